@@ -1,0 +1,55 @@
+"""A private roscore on a free port, for tests that must not share a master."""
+import os
+import tempfile
+
+from course_testing.proc import Proc, free_port, wait_for
+
+
+class RosCore:
+    """Start `roscore -p PORT`; `env` is os.environ pointed at it (ROS_MASTER_URI, logs)."""
+
+    def __init__(self, port=None, log_dir=None):
+        self.port = port or free_port()
+        self.uri = 'http://127.0.0.1:%d' % self.port
+        self.log_dir = log_dir or tempfile.mkdtemp(prefix='roscore-')
+        self.env = dict(os.environ)
+        self.env.update(ROS_MASTER_URI=self.uri, ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir)
+        self.env.pop('ROS_HOSTNAME', None)
+        self.proc = None
+
+    def start(self, timeout=30.0):
+        self.proc = Proc(['roscore', '-p', str(self.port)], env=self.env,
+                         log=os.path.join(self.log_dir, 'roscore.out'))
+        wait_for(self._up, timeout, 0.1, 'roscore on port %d' % self.port)
+        return self
+
+    def _up(self):
+        if not self.proc.alive():
+            raise RuntimeError('roscore exited early:\n' + self.proc.output()[-2000:])
+        import rosgraph
+        try:
+            master = rosgraph.Master('/course_testing', master_uri=self.uri)
+            master.getPid()
+            # /rosout must be up too, or the first nodes lose their log messages
+            return '/rosout' in [n for n in _nodes(master)]
+        except Exception:
+            return False
+
+    def stop(self):
+        if self.proc:
+            self.proc.stop()
+            self.proc = None
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+def _nodes(master):
+    pubs, subs, srvs = master.getSystemState()
+    names = set()
+    for _, nodes in pubs + subs + srvs:
+        names.update(nodes)
+    return names

@@ -1,0 +1,32 @@
+"""The helpers themselves: a private roscore answers, Xvfb gives a screenshot, groups die."""
+import os
+import subprocess
+
+from course_testing import Proc, RosCore, Xvfb, screenshot, wait_for
+
+
+def test_roscore_answers_and_stops(tmp_path):
+    core = RosCore(log_dir=str(tmp_path)).start()
+    try:
+        out = subprocess.run(['rosparam', 'get', '/rosdistro'], env=core.env, capture_output=True,
+                             text=True, timeout=30)
+        assert out.returncode == 0, out.stderr
+        pid = core.proc.pid
+    finally:
+        core.stop()
+    assert not os.path.exists('/proc/%d' % pid) or open('/proc/%d/stat' % pid).read().split()[2] == 'Z'
+
+
+def test_xvfb_screenshot(tmp_path):
+    with Xvfb(320, 240) as x:
+        png = screenshot(x.display, str(tmp_path / 'shot.png'))
+        ident = subprocess.run(['identify', png], capture_output=True, text=True, check=True).stdout
+        assert '320x240' in ident
+
+
+def test_proc_stop_kills_group(tmp_path):
+    p = Proc(['bash', '-c', 'sleep 300 & echo $! > %s; wait' % (tmp_path / 'child')])
+    wait_for(lambda: (tmp_path / 'child').exists() and (tmp_path / 'child').read_text().strip(), 5)
+    child = int((tmp_path / 'child').read_text())
+    p.stop()
+    wait_for(lambda: not os.path.exists('/proc/%d' % child), 5, what='child gone')

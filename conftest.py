@@ -1,0 +1,35 @@
+"""Shared pytest fixtures: a private roscore, an Xvfb display, a scratch ROS log dir."""
+import os
+
+import pytest
+
+REPO = os.path.dirname(os.path.abspath(__file__))
+
+
+@pytest.fixture
+def repo():
+    return REPO
+
+
+@pytest.fixture
+def roscore(tmp_path):
+    """A roscore of this test's own on a free port; `.env` points child processes at it."""
+    from course_testing import RosCore
+    core = RosCore(log_dir=str(tmp_path / 'ros_log'))
+    core.start()
+    try:
+        yield core
+    finally:
+        core.stop()
+
+
+@pytest.fixture
+def xvfb():
+    """An Xvfb display of this test's own; `.env` has DISPLAY set, `.display` is ':N'."""
+    from course_testing import Xvfb
+    x = Xvfb()
+    x.start()
+    try:
+        yield x
+    finally:
+        x.stop()

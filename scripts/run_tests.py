@@ -1,0 +1,169 @@
+#!/usr/bin/env python3
+"""Run every pytest test and every rostest of the repository and print one closing line.
+
+The closing line is `N passed, N failed, N skipped`, aggregated from the JUnit XML files the
+runs write (pytest's --junitxml and rostest's results). Exit status is non-zero when anything
+failed, when a run produced no result file, or when a run hit its time limit.
+"""
+import argparse
+import glob
+import os
+import signal
+import subprocess
+import sys
+import time
+import xml.etree.ElementTree as ET
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.path.join(REPO, 'build', 'test-results')
+ROSTEST_TIMEOUT = 900
+
+
+def run(cmd, timeout, env=None, log=None):
+    """Run cmd in its own process group; on timeout kill the group. Returns (rc, timed_out)."""
+    out = open(log, 'w') if log else None
+    p = subprocess.Popen(cmd, env=env, cwd=REPO, stdout=out, stderr=subprocess.STDOUT if out else None,
+                         start_new_session=True)
+    try:
+        return p.wait(timeout), False
+    except subprocess.TimeoutExpired:
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
+            try:
+                os.killpg(p.pid, sig)
+                p.wait(5)
+                break
+            except (subprocess.TimeoutExpired, ProcessLookupError):
+                continue
+        return -1, True
+    finally:
+        try:
+            os.killpg(p.pid, signal.SIGKILL)   # nothing of the run survives it
+        except (ProcessLookupError, PermissionError):
+            pass
+        if out:
+            out.close()
+
+
+def count_junit(path):
+    """(passed, failed, skipped, failure names) of one JUnit XML file."""
+    passed = failed = skipped = 0
+    names = []
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError) as e:
+        return 0, 1, 0, ['%s: unreadable result file (%s)' % (path, e)]
+    for case in root.iter('testcase'):
+        name = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
+        if case.find('failure') is not None or case.find('error') is not None:
+            failed += 1
+            names.append(name)
+        elif case.find('skipped') is not None:
+            skipped += 1
+        else:
+            passed += 1
+    return passed, failed, skipped, names
+
+
+def package_of(path):
+    d = os.path.dirname(path)
+    while d != REPO and d != '/':
+        pxml = os.path.join(d, 'package.xml')
+        if os.path.exists(pxml):
+            return ET.parse(pxml).getroot().findtext('name').strip()
+        d = os.path.dirname(d)
+    return None
+
+
+def rostest_files():
+    files = glob.glob(os.path.join(REPO, 'catkin_ws', 'src', '**', 'test', '*.test'), recursive=True)
+    return sorted(f for f in files if package_of(f))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--full', action='store_true', help='also run tests marked `full`')
+    ap.add_argument('-k', dest='keyword', help='pytest -k expression; rostests: substring of file name')
+    ap.add_argument('--no-rostest', action='store_true')
+    ap.add_argument('--no-pytest', action='store_true')
+    args = ap.parse_args()
+
+    os.makedirs(RESULTS, exist_ok=True)
+    for old in glob.glob(os.path.join(RESULTS, '**', '*.xml'), recursive=True):
+        os.remove(old)
+    env = dict(os.environ)
+    env['ROS_LOG_DIR'] = os.path.join(RESULTS, 'ros_log')
+    env['COURSE_TEST_FULL'] = '1' if args.full else ''
+
+    problems = []   # runs that produced no usable results
+    xmls = []
+    t0 = time.monotonic()
+
+    if not args.no_pytest:
+        junit = os.path.join(RESULTS, 'pytest.xml')
+        cmd = [sys.executable, '-m', 'pytest', '-rfEs', '--junitxml', junit]
+        if not args.full:
+            cmd += ['-m', 'not full']
+        if args.keyword:
+            cmd += ['-k', args.keyword]
+        print('=== pytest', flush=True)
+        rc, timed_out = run(cmd, 3600, env=env)
+        if timed_out:
+            problems.append('pytest: hit the 3600 s time limit')
+        if os.path.exists(junit):
+            xmls.append(junit)
+        elif rc not in (0, 5):  # 5 = nothing collected
+            problems.append('pytest: exited %s without a result file' % rc)
+
+    if not args.no_rostest:
+        for f in rostest_files():
+            if args.keyword and args.keyword not in os.path.basename(f):
+                continue
+            pkg = package_of(f)
+            rel = os.path.relpath(f, REPO)
+            outdir = os.path.join(RESULTS, 'rostest', pkg + '-' + os.path.basename(f)[:-5])
+            log = outdir + '.log'
+            os.makedirs(outdir, exist_ok=True)
+            print('=== rostest %s %s' % (pkg, rel), flush=True)
+            t = time.monotonic()
+            rc, timed_out = run(['rostest', '--results-base-dir', outdir, pkg, f], ROSTEST_TIMEOUT,
+                                env=env, log=log)
+            found = [x for x in glob.glob(os.path.join(outdir, '**', '*.xml'), recursive=True)
+                     if not os.path.basename(x).startswith('rostest-')]
+            summary = [x for x in glob.glob(os.path.join(outdir, '**', 'rostest-*.xml'), recursive=True)]
+            p, fl, s, _ = (0, 0, 0, [])
+            for x in found or summary:
+                a, b, c, _n = count_junit(x)
+                p, fl, s = p + a, fl + b, s + c
+            status = 'ok' if rc == 0 and not fl else 'FAILED'
+            print('    %s: %d passed, %d failed (%.0f s, log %s)' % (
+                status, p, fl, time.monotonic() - t, os.path.relpath(log, REPO)), flush=True)
+            if timed_out:
+                problems.append('%s: hit the %d s time limit' % (rel, ROSTEST_TIMEOUT))
+            elif rc != 0 and not fl:
+                problems.append('%s: rostest exited %d (see %s)' % (rel, rc, os.path.relpath(log, REPO)))
+            if rc != 0 or fl:
+                with open(log) as fh:
+                    print(''.join(fh.readlines()[-30:]), flush=True)
+            xmls.extend(found or summary)
+
+    passed = failed = skipped = 0
+    failures = []
+    for x in xmls:
+        a, b, c, names = count_junit(x)
+        passed, failed, skipped = passed + a, failed + b, skipped + c
+        failures += names
+    failed += len(problems)
+    print('\n=== summary (%.0f s)' % (time.monotonic() - t0))
+    for name in failures:
+        print('FAILED', name)
+    for pr in problems:
+        print('FAILED', pr)
+    line = '%d passed, %d failed' % (passed, failed)
+    if skipped:
+        line += ', %d skipped' % skipped
+    print(line, flush=True)
+    return 1 if failed or passed == 0 else 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# One-command setup on Debian 12: Debian packages, pinned PyPI packages (workspace-local),
+# and the catkin workspace. Idempotent: a second run only rebuilds what changed.
+# The Dockerfile runs exactly this script.
+set -euo pipefail
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+cd "$REPO"
+export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
+
+log() { printf '[setup] %s\n' "$*"; }
+die() { printf '[setup] ERROR: %s\n' "$*" >&2; exit 1; }
+
+SUDO=""
+if [ "$(id -u)" != 0 ]; then
+    command -v sudo >/dev/null || die "not root and no sudo: run as root to install packages"
+    SUDO="sudo"
+fi
+
+# 1. Debian packages -------------------------------------------------------------------
+mapfile -t DEB_PKGS < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' deps/debian.txt | grep -v '^$')
+missing=()
+for p in "${DEB_PKGS[@]}"; do
+    status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+    [ "$status" = "install ok installed" ] || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    log "installing ${#missing[@]} Debian packages: ${missing[*]}"
+    $SUDO apt-get update
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends "${missing[@]}"
+else
+    log "Debian packages: all ${#DEB_PKGS[@]} installed"
+fi
+
+# 2. PyPI packages into a workspace-local directory ------------------------------------
+PYDEPS="$REPO/.deps/python"
+STAMP="$REPO/.deps/python.stamp"
+want=$(sha256sum deps/python.txt | cut -d' ' -f1)
+have=$(cat "$STAMP" 2>/dev/null || true)
+if [ "$want" != "$have" ]; then
+    reqs=$(sed -e 's/#.*//' deps/python.txt | grep -v '^[[:space:]]*$' || true)
+    rm -rf "$PYDEPS"; mkdir -p "$PYDEPS"
+    if [ -n "$reqs" ]; then
+        if echo "$reqs" | grep -qv '=='; then die "deps/python.txt: every requirement must be pinned with =="; fi
+        log "installing PyPI packages into .deps/python"
+        /usr/bin/python3 -m pip install --disable-pip-version-check --no-warn-script-location \
+            --target "$PYDEPS" -r deps/python.txt
+    fi
+    echo "$want" > "$STAMP"
+else
+    log "PyPI packages: up to date"
+fi
+
+# 3. catkin workspace ------------------------------------------------------------------
+log "building catkin_ws with catkin_make"
+cd "$REPO/catkin_ws"
+exec 9>"$REPO/.deps/build.lock"; flock 9     # one catkin_make at a time in this workspace
+catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release >"$REPO/.deps/catkin_make.log" 2>&1 || {
+    tail -n 40 "$REPO/.deps/catkin_make.log" >&2
+    die "catkin_make failed (full log: .deps/catkin_make.log)"
+}
+log "done: source scripts/env.sh to use the workspace"
