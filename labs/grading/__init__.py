@@ -1,0 +1,5 @@
+"""Automatic grading of the course labs (labs/grade): overlay build, rostest run, report.
+
+Pure logic (variants, criteria, path and name checks, report, JUnit) imports no rospy and is
+unit-tested without a master; `observe` holds the rospy side used by the rostest checkers.
+"""

@@ -1,0 +1,127 @@
+"""labs/grade LAB --isu ID [--repo PATH] [--junit FILE] [--timeout S]
+
+Finds the lab's package in the student's repository, builds it in a fresh overlay workspace
+on top of the course workspace, runs the lab's rostest for the variant (last ISU digit),
+prints a per-criterion report (ru/en) and writes JUnit XML. Exit 0 only if all criteria pass.
+"""
+import argparse
+import os
+import shutil
+import sys
+import tempfile
+import time
+
+from grading import lab1, lab2
+from grading.common import (LABS_DIR, Criterion, GradeError, parse_isu, read_report, reason)
+from grading.report import format_report, write_junit
+from grading.workspace import StepFailed, build_overlay, course_env, locate, run_group
+
+LAB_MODULES = {'lab1': lab1, 'lab2': lab2}
+BUILD_TIMEOUT = 300.0
+
+
+def package_criterion():
+    return Criterion('0', 'Пакет найден и собирается', 'Package found and builds')
+
+
+def lab_criteria(mod, why=None):
+    return [Criterion(cid, ru, en, False, why) for cid, ru, en in mod.CRITERIA]
+
+
+def tail(path, n=5):
+    try:
+        with open(path, errors='replace') as f:
+            lines = [l.strip() for l in f.read().splitlines() if l.strip()]
+        return ' | '.join(lines[-n:])[-400:]
+    except OSError:
+        return 'no log'
+
+
+def run_checker(lab, isu, env, work, timeout):
+    """Run the lab's rostest; return the checker's criteria (or None) and a log path."""
+    mod = LAB_MODULES[lab]
+    report = os.path.join(work, 'report.json')
+    env = dict(env)
+    env['ROS_PACKAGE_PATH'] = env.get('ROS_PACKAGE_PATH', '') + ':' + os.path.join(LABS_DIR, lab, 'grader')
+    env['PYTHONPATH'] = LABS_DIR + ':' + env.get('PYTHONPATH', '')
+    env['ROS_LOG_DIR'] = os.path.join(work, 'ros_log')
+    env['ROS_HOME'] = os.path.join(work, 'ros_home')
+    env.setdefault('ROS_IP', '127.0.0.1')
+    env.pop('ROS_HOSTNAME', None)
+    if not env.get('DISPLAY'):
+        env['QT_QPA_PLATFORM'] = 'offscreen'
+    log = os.path.join(work, 'rostest.log')
+    cmd = ['rostest', '--results-base-dir', os.path.join(work, 'results'),
+           mod.GRADER_PKG, lab + '.test', 'isu:=' + isu, 'report:=' + report,
+           'workdir:=' + work]
+    rc, timed_out = run_group(cmd, timeout, env=env, cwd=work, log=log)
+    crits = read_report(report) if os.path.exists(report) else None
+    return crits, log, timed_out
+
+
+def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout):
+    """Returns the list of criteria (package criterion first)."""
+    mod = LAB_MODULES[lab]
+    pkg_c = package_criterion()
+    work = tempfile.mkdtemp(prefix='grade-%s-%s-' % (lab, isu))
+    try:
+        env = course_env()
+        try:
+            pkg_dir = locate(repo, mod.PACKAGE)
+            print('[grade] found %s in %s; building it in %s' % (mod.PACKAGE, pkg_dir, work), file=out, flush=True)
+            t = time.monotonic()
+            run_env = build_overlay(pkg_dir, os.path.join(work, 'ws'), env, BUILD_TIMEOUT)
+            pkg_c.set(True, reason('пакет %s собран за %.0f с' % (mod.PACKAGE, time.monotonic() - t),
+                                   'package %s built in %.0f s' % (mod.PACKAGE, time.monotonic() - t)))
+        except StepFailed as e:
+            pkg_c.set(False, e.reason)
+            return [pkg_c] + lab_criteria(mod, reason('не проверено: ' + e.reason['ru'],
+                                                      'not checked: ' + e.reason['en']))
+        print('[grade] running the %s checker (rostest, time limit %d s)' % (lab, timeout), file=out, flush=True)
+        crits, log, timed_out = run_checker(lab, isu, run_env, work, timeout)
+        if crits is None:
+            why = ('the checker hit the %d s time limit' % timeout if timed_out
+                   else 'the checker produced no report')
+            why_ru = ('проверка не уложилась в %d с' % timeout if timed_out
+                      else 'проверка не выдала отчёт')
+            last = tail(log)
+            return [pkg_c] + lab_criteria(mod, reason('%s (%s)' % (why_ru, last), '%s (%s)' % (why, last)))
+        return [pkg_c] + crits
+    finally:
+        if keep:
+            print('[grade] work dir kept: %s' % work, file=out)
+        else:
+            shutil.rmtree(work, ignore_errors=True)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog='labs/grade', description=__doc__.splitlines()[0])
+    ap.add_argument('lab', help='lab1 or lab2')
+    ap.add_argument('--isu', required=True, help='your ISU id (digits); its last digit is the variant')
+    ap.add_argument('--repo', default='.', help='folder with your lab repository (default: .)')
+    ap.add_argument('--junit', help='JUnit XML output (default: ./grade-LAB-ISU.xml)')
+    ap.add_argument('--timeout', type=float, help='time limit of the checker run, s')
+    ap.add_argument('--keep', action='store_true', help='keep the temporary work dir (logs)')
+    args = ap.parse_args(argv)
+    try:
+        if args.lab not in LAB_MODULES:
+            raise GradeError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LAB_MODULES))))
+        isu = parse_isu(args.isu)
+        repo = os.path.abspath(args.repo)
+        mod = LAB_MODULES[args.lab]
+        timeout = args.timeout or mod.DEFAULT_TIMEOUT
+        if timeout <= 0:
+            raise GradeError('--timeout must be positive, got %s' % args.timeout)
+        junit = args.junit or 'grade-%s-%s.xml' % (args.lab, isu)
+        t0 = time.monotonic()
+        crits = grade(args.lab, isu, repo, timeout, keep=args.keep)
+    except GradeError as e:
+        print('labs/grade: error: %s' % e, file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print('labs/grade: interrupted', file=sys.stderr)
+        return 130
+    print(format_report(args.lab, isu, crits))
+    write_junit(junit, args.lab, isu, crits, time.monotonic() - t0)
+    print('[grade] JUnit report: %s' % os.path.abspath(junit))
+    return 0 if all(c.passed for c in crits) else 1

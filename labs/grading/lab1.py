@@ -1,0 +1,222 @@
+"""Lab 1 rules: three nodes, the variant's computing node, operation and result topic.
+
+Pure logic: `evaluate(obs)` turns an observation (gathered by grading.observe on a running
+graph) into the four criteria. No rospy here.
+"""
+import math
+import os
+
+from grading.common import Criterion, reason, variant
+
+PACKAGE = 'my_robot_controller'
+GRADER_PKG = 'lab1_grader'
+DEFAULT_TIMEOUT = 150.0
+NODES = ('node1', 'node2', 'node3')
+STARTUP_LIMIT = 20.0   # s from start until every node is up and the first result arrives
+OBSERVE = 8.0          # s of observation after the first result
+MIN_RESULTS = 3        # result messages needed in the observation ("repeatedly")
+MAX_GAP = 5.0          # s, largest allowed pause between two results
+WINDOW = 5.0           # s, operand values this old may still explain a result
+ABS_TOL = 1e-3         # |result - expected| <= ABS_TOL + REL_TOL * |expected|
+REL_TOL = 1e-4
+
+CRITERIA = [
+    ('1', 'Ровно три узла node1, node2, node3', 'Exactly three nodes node1, node2, node3'),
+    ('2', 'Вычисляющий узел варианта публикует result_<ISU> и слушает два других',
+     'The variant\'s computing node publishes result_<ISU> and subscribes to the other two'),
+    ('3', 'Результат равен операции варианта над двумя числами',
+     'The result equals the variant\'s operation on the two numbers'),
+    ('4', 'Результат публикуется регулярно', 'The result is published repeatedly'),
+]
+
+
+def roles(isu):
+    """(computing node, (first sender, second sender), operation) for the ISU's variant."""
+    v = variant('lab1', isu)
+    comp = v['compute']
+    senders = tuple(n for n in NODES if n != comp)
+    return comp, senders, v['operation']
+
+
+def apply_op(op, a, b):
+    if op == '+':
+        return a + b
+    if op == '-':
+        return a - b
+    if op == '*':
+        return a * b
+    if op == '/':
+        return a / b if b != 0 else math.nan
+    raise ValueError('unknown operation %r' % op)
+
+
+def close(value, expected):
+    return math.isfinite(expected) and abs(value - expected) <= ABS_TOL + REL_TOL * abs(expected)
+
+
+def result_topics(isu, comp):
+    """Accepted names of the result topic: the relative name resolved in the root
+    namespace (/result_ISU) or the computing node's private name (/nodeN/result_ISU)."""
+    return ['/result_%s' % isu, '/%s/result_%s' % (comp, isu)]
+
+
+def node_scripts(pkg_dir):
+    """Node scripts of a package: *.py outside src/ and test/ (setup.py aside) that are
+    executable or call init_node."""
+    found = {}
+    for d, dirs, files in os.walk(pkg_dir):
+        rel = os.path.relpath(d, pkg_dir)
+        top = rel.split(os.sep)[0]
+        if rel != '.' and (top in ('src', 'test', 'tests', 'build', 'devel') or top.startswith('.')):
+            dirs[:] = []
+            continue
+        for f in files:
+            if f.endswith('.py') and f != 'setup.py':
+                p = os.path.join(d, f)
+                try:
+                    with open(p, errors='replace') as fh:
+                        text = fh.read()
+                except OSError:
+                    continue
+                if 'init_node' in text or os.access(p, os.X_OK):
+                    found.setdefault(f, p)
+    return found
+
+
+def candidates(series, t, window=WINDOW):
+    """Values of a (t, v) series that may explain something seen at time t."""
+    before = [v for (ts, v) in series if ts <= t]
+    recent = [v for (ts, v) in series if t - window <= ts <= t]
+    if before and before[-1] not in recent:
+        recent.append(before[-1])
+    return recent
+
+
+def match_results(results, first, second, op, int_result=False):
+    """(verified, wrong, example of a wrong one) over result messages with known operands."""
+    verified, wrong, example = 0, 0, None
+    for t, r in results:
+        a_s, b_s = candidates(first, t), candidates(second, t)
+        if not a_s or not b_s:
+            continue
+        ok = False
+        for a in a_s:
+            for b in b_s:
+                e = apply_op(op, a, b)
+                if close(r, e) or (int_result and op == '/' and math.isfinite(e) and close(r, float(int(e)))):
+                    ok = True
+        verified += 1
+        if not ok:
+            wrong += 1
+            if example is None:
+                example = (r, a_s[-1], b_s[-1], apply_op(op, a_s[-1], b_s[-1]))
+    return verified, wrong, example
+
+
+def _crit(cid):
+    for c in CRITERIA:
+        if c[0] == cid:
+            return Criterion(*c)
+    raise KeyError(cid)
+
+
+def fmt(x):
+    return '%g' % x
+
+
+def evaluate(obs):
+    """Criteria from an observation dict (see grading.observe.Lab1Observer.observation)."""
+    isu = obs['isu']
+    comp, (s1, s2), op = roles(isu)
+    c1, c2, c3, c4 = (_crit(i) for i in '1234')
+    scripts = sorted(obs.get('scripts', []))
+    nodes = sorted(obs.get('nodes', []))
+    procs = obs.get('procs', {})
+    crashed = ['%s.py exited with code %s: %s' % (n, p['rc'], p.get('last', ''))
+               for n, p in sorted(procs.items()) if p.get('rc') not in (None,)]
+    missing = [n + '.py' for n in NODES if n + '.py' not in scripts]
+    extra = [s for s in scripts if s not in [n + '.py' for n in NODES]]
+    not_exec = obs.get('not_executable', [])
+    want_nodes = ['/' + n for n in NODES]
+    if missing:
+        c1.set(False, reason('нет скриптов узлов: %s' % ', '.join(missing),
+                             'missing node scripts: %s' % ', '.join(missing)))
+    elif extra:
+        c1.set(False, reason('лишние узлы в пакете (нужно ровно три): %s' % ', '.join(extra),
+                             'extra node scripts in the package (exactly three wanted): %s' % ', '.join(extra)))
+    elif not_exec:
+        c1.set(False, reason('скрипт не исполняемый (chmod +x): %s' % ', '.join(not_exec),
+                             'script is not executable (chmod +x): %s' % ', '.join(not_exec)))
+    elif crashed:
+        c1.set(False, reason('узел упал: %s' % crashed[0], 'a node crashed: %s' % crashed[0]))
+    elif nodes != want_nodes:
+        c1.set(False, reason('в графе узлы %s, а нужны %s' % (', '.join(nodes) or 'нет', ', '.join(want_nodes)),
+                             'nodes in the graph: %s; wanted: %s' % (', '.join(nodes) or 'none', ', '.join(want_nodes))))
+    else:
+        c1.set(True, reason('работают узлы %s' % ', '.join(nodes), 'running nodes: %s' % ', '.join(nodes)))
+
+    pubs, subs = obs.get('pubs', {}), obs.get('subs', {})
+    cn = '/' + comp
+    accepted = result_topics(isu, comp)
+    res_topic = next((t for t in accepted if t in pubs.get(cn, [])), None)
+    in_topics = {s: sorted(set(subs.get(cn, [])) & set(pubs.get('/' + s, []))) for s in (s1, s2)}
+    if res_topic is None:
+        others = sorted(t for n, ts in pubs.items() for t in ts if t.endswith('result_%s' % isu))
+        where = ('; result_%s publishes %s' % (isu, ', '.join(n for n, ts in sorted(pubs.items())
+                                                             if any(t.endswith('result_' + isu) for t in ts)))
+                 if others else '')
+        c2.set(False, reason('узел %s (вариант %s) не публикует %s%s' % (comp, isu[-1], ' или '.join(accepted), where),
+                             'node %s (variant %s) does not publish %s%s' % (comp, isu[-1], ' or '.join(accepted), where)))
+    elif not all(in_topics.values()):
+        lack = [s for s in (s1, s2) if not in_topics[s]]
+        c2.set(False, reason('узел %s не подписан на топики узла %s' % (comp, ', '.join(lack)),
+                             'node %s does not subscribe to a topic of %s' % (comp, ', '.join(lack))))
+    else:
+        c2.set(True, reason('%s публикует %s, слушает %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2])),
+                            '%s publishes %s, subscribes to %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2]))))
+
+    msgs = obs.get('msgs', {})
+    types = obs.get('types', {})
+    results = msgs.get(res_topic, []) if res_topic else []
+    if not res_topic:
+        c3.set(False, reason('нет топика результата', 'no result topic'))
+    elif not results:
+        c3.set(False, reason('на %s не пришло ни одного числа' % res_topic, 'no number arrived on %s' % res_topic))
+    elif not all(in_topics.values()):
+        c3.set(False, reason('неизвестно, откуда берутся операнды', 'cannot tell where the operands come from'))
+    else:
+        first = sorted(v for t in in_topics[s1] for v in msgs.get(t, []))
+        second = sorted(v for t in in_topics[s2] for v in msgs.get(t, []))
+        int_result = types.get(res_topic, '').split('/')[-1].lower().startswith(('int', 'uint'))
+        verified, wrong, ex = match_results(results, first, second, op, int_result)
+        formula = '%s %s %s' % (s1, op, s2)
+        if wrong:
+            r, a, b, e = ex
+            c3.set(False, reason('результат %s, а %s = %s %s %s = %s (неверно %d из %d)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified),
+                                 'result %s but %s = %s %s %s = %s (%d of %d wrong)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified)))
+        elif verified < MIN_RESULTS:
+            c3.set(False, reason('удалось сверить лишь %d результатов (нужно %d)' % (verified, MIN_RESULTS),
+                                 'only %d results could be checked against their operands (%d needed)' % (verified, MIN_RESULTS)))
+        else:
+            c3.set(True, reason('%d из %d результатов верны: %s' % (verified, verified, formula),
+                                '%d of %d results correct: %s' % (verified, verified, formula)))
+
+    if not res_topic or not results:
+        c4.set(False, reason('результат не публикуется', 'the result is not published'))
+    else:
+        ts = [t for t, _ in results]
+        gaps = [b - a for a, b in zip(ts, ts[1:])]
+        end = obs.get('end', ts[-1])
+        gap = max(gaps + [end - ts[-1]])
+        first_after = ts[0] - obs.get('start', ts[0])
+        if len(ts) < MIN_RESULTS:
+            c4.set(False, reason('за %.0f с пришло %d сообщений (нужно ≥ %d)' % (OBSERVE, len(ts), MIN_RESULTS),
+                                 '%d messages in %.0f s (>= %d needed)' % (len(ts), OBSERVE, MIN_RESULTS)))
+        elif gap > MAX_GAP:
+            c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с)' % (gap, MAX_GAP),
+                                 'a %.1f s pause between results (%.0f s allowed)' % (gap, MAX_GAP)))
+        else:
+            rate = (len(ts) - 1) / (ts[-1] - ts[0]) if ts[-1] > ts[0] else 0.0
+            c4.set(True, reason('%d сообщений, %.1f Гц, первое через %.1f с' % (len(ts), rate, first_after),
+                                '%d messages, %.1f Hz, first after %.1f s' % (len(ts), rate, first_after)))
+    return [c1, c2, c3, c4]

@@ -1,0 +1,353 @@
+"""Lab 2 rules: two turtlesims in ns1_<ISU>/ns2_<ISU>, the points, the time, the follower.
+
+Pure logic: static checks of the package (launch files, scripts) and `evaluate(obs)` that
+turns an observation (grading.observe.Lab2Observer) into the six criteria. No rospy here.
+"""
+import ast
+import math
+import os
+import re
+import xml.etree.ElementTree as ET
+
+from grading.common import Criterion, reason, variant
+
+PACKAGE = 'my_best_controller'
+GRADER_PKG = 'lab2_grader'
+LAUNCH = 'lab2_setup.launch'
+DEFAULT_TIMEOUT = 420.0
+POINT_TOL = 0.3        # m: turtle 1 must come this close to every point
+FOLLOW_TOL = 0.5       # m: symmetric max nearest-point distance between the two paths
+T2_POINT_TOL = 0.5     # m: turtle 2 must come this close to every point
+TIME_ABS_TOL = 1.5     # s: |reported - observed| <= TIME_ABS_TOL + TIME_REL_TOL * observed
+TIME_REL_TOL = 0.10
+RUN_LIMIT = 300.0      # s: the whole run, from roslaunch to both turtles at rest
+STILL_TIME = 6.0       # s: both turtles at rest this long = the run is over
+NO_MOTION_LIMIT = 40.0  # s: turtle 1 never moving this long after start = give up
+MOVE_EPS = 0.02        # m: a pose change above this is motion
+WALL_MARGIN = 0.02     # m: a pose this close to the 0..11.09 border is a wall hit
+WORLD = 11.088889
+ALLOWED_GLOBAL = ('/rosout', '/rosout_agg', '/clock')
+
+CRITERIA = [
+    ('1', 'В ns1_<ISU> и ns2_<ISU> запущены turtlesim с turtle1',
+     'ns1_<ISU> and ns2_<ISU> each run a turtlesim with turtle1'),
+    ('2', 'Черепаха 1 проходит все точки варианта', 'Turtle 1 visits every point of the variant'),
+    ('3', 'Время до последней точки опубликовано в result_<ISU>',
+     'The time to the last point is published on result_<ISU>'),
+    ('4', 'Черепаха 2 повторяет путь черепахи 1 (по её pose, без remap)',
+     'Turtle 2 repeats turtle 1\'s path (from its pose, no remap)'),
+    ('5', 'Нет глобальных имён: всё внутри ns1_<ISU>/ns2_<ISU>',
+     'No global names: everything under ns1_<ISU>/ns2_<ISU>'),
+    ('6', 'Работа завершена за 5 минут, без ударов о стены',
+     'The run finishes within 5 minutes, without hitting walls'),
+]
+
+
+def points(isu):
+    return [tuple(float(c) for c in p) for p in variant('lab2', isu)['points']]
+
+
+def namespaces(isu):
+    return '/ns1_%s' % isu, '/ns2_%s' % isu
+
+
+# --- static checks of the package -------------------------------------------------------
+
+def launch_files(pkg_dir):
+    out = []
+    for d, dirs, files in os.walk(pkg_dir):
+        dirs[:] = [x for x in dirs if not x.startswith('.') and x not in ('build', 'devel')]
+        out += [os.path.join(d, f) for f in files if f.endswith('.launch') or f.endswith('.launch.xml')]
+    return sorted(out)
+
+
+def find_launch(pkg_dir):
+    for f in launch_files(pkg_dir):
+        if os.path.basename(f) == LAUNCH:
+            return f
+    return None
+
+
+def declares_isu(path):
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError):
+        return False
+    return any(a.get('name') == 'isu' for a in root.findall('arg'))
+
+
+def remaps(pkg_dir):
+    """['file: <remap from=a to=b>' ...] for every remap in the package's launch files."""
+    found = []
+    for f in launch_files(pkg_dir):
+        rel = os.path.relpath(f, pkg_dir)
+        try:
+            root = ET.parse(f).getroot()
+        except ET.ParseError as e:
+            found.append('%s: unreadable (%s)' % (rel, e))
+            continue
+        for el in root.iter('remap'):
+            found.append('%s: <remap from="%s" to="%s"/>' % (rel, el.get('from'), el.get('to')))
+        for el in root.iter('node'):
+            for a in (el.get('args') or '').split():
+                if ':=' in a and not a.startswith('_'):
+                    found.append('%s: node %s args %s' % (rel, el.get('name'), a))
+    return found
+
+
+GLOBAL_NAME = re.compile(r'^/[A-Za-z][A-Za-z0-9_]*(/[A-Za-z0-9_]+)*/?$')
+
+
+def global_literals(pkg_dir):
+    """['file:line "/name"'] for string literals that look like global ROS names."""
+    found = []
+    for d, dirs, files in os.walk(pkg_dir):
+        dirs[:] = [x for x in dirs if not x.startswith('.') and x not in ('build', 'devel', 'test')]
+        for f in files:
+            if not f.endswith('.py') or f == 'setup.py':
+                continue
+            p = os.path.join(d, f)
+            try:
+                with open(p, errors='replace') as fh:
+                    tree = ast.parse(fh.read(), p)
+            except (SyntaxError, OSError, ValueError):
+                continue
+            docstrings = {id(n.value) for n in ast.walk(tree) if isinstance(n, ast.Expr)}
+            for n in ast.walk(tree):
+                if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in docstrings:
+                    v = n.value
+                    if v.startswith('/') and GLOBAL_NAME.match(v.split('{')[0].rstrip('_') or v):
+                        if not v.startswith(('/usr', '/tmp', '/dev', '/home', '/opt', '/etc', '/proc')):
+                            found.append('%s:%d "%s"' % (os.path.relpath(p, pkg_dir), n.lineno, v))
+    return found
+
+
+# --- path geometry ------------------------------------------------------------------------
+
+def first_motion(path, eps=MOVE_EPS):
+    """Index of the first pose that differs from the first one by more than eps, or None."""
+    if not path:
+        return None
+    x0, y0 = path[0][1], path[0][2]
+    for i, p in enumerate(path):
+        if math.hypot(p[1] - x0, p[2] - y0) > eps:
+            return i
+    return None
+
+
+def visits(path, pts, tol):
+    """{point: (closest distance, time first within tol or None)}."""
+    out = {}
+    for q in pts:
+        best, when = math.inf, None
+        for t, x, y in ((p[0], p[1], p[2]) for p in path):
+            d = math.hypot(x - q[0], y - q[1])
+            best = min(best, d)
+            if when is None and d <= tol:
+                when = t
+        out[q] = (best, when)
+    return out
+
+
+def densify(path, step=0.05):
+    pts = []
+    for a, b in zip(path, path[1:]):
+        (x0, y0), (x1, y1) = (a[1], a[2]), (b[1], b[2])
+        n = max(1, int(math.hypot(x1 - x0, y1 - y0) / step))
+        pts += [(x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n) for k in range(n)]
+    if path:
+        pts.append((path[-1][1], path[-1][2]))
+    return pts
+
+
+def _directed(a, b):
+    """max over a of the distance to the nearest point of b (grid-bucketed)."""
+    cell = 0.5
+    grid = {}
+    for x, y in b:
+        grid.setdefault((int(x // cell), int(y // cell)), []).append((x, y))
+    worst = 0.0
+    for x, y in a:
+        best = math.inf
+        r = 1
+        while best == math.inf or (r - 1) * cell < best:
+            cx, cy = int(x // cell), int(y // cell)
+            for i in range(cx - r, cx + r + 1):
+                for j in range(cy - r, cy + r + 1):
+                    for qx, qy in grid.get((i, j), ()):
+                        best = min(best, math.hypot(qx - x, qy - y))
+            r += 1
+            if r > 40:
+                break
+        worst = max(worst, best)
+    return worst
+
+
+def path_deviation(p1, p2):
+    """Symmetric max nearest-point distance (Hausdorff) between two pose paths, m."""
+    a, b = densify(p1), densify(p2)
+    if not a or not b:
+        return math.inf
+    return max(_directed(a, b), _directed(b, a))
+
+
+def path_length(path):
+    return sum(math.hypot(b[1] - a[1], b[2] - a[2]) for a, b in zip(path, path[1:]))
+
+
+def wall_hits(path):
+    return [p for p in path if min(p[1], p[2]) <= WALL_MARGIN or max(p[1], p[2]) >= WORLD - WALL_MARGIN]
+
+
+def under(name, spaces):
+    return any(name == s or name.startswith(s + '/') for s in spaces)
+
+
+def fmt_pt(q):
+    return '(%g,%g)' % q
+
+
+def _crit(cid):
+    return Criterion(*next(c for c in CRITERIA if c[0] == cid))
+
+
+def evaluate(obs):
+    """The six criteria from an observation dict."""
+    isu = obs['isu']
+    ns1, ns2 = namespaces(isu)
+    pts = points(isu)
+    c = {i: _crit(i) for i in '123456'}
+    pubs, subs, srvs = obs.get('pubs', {}), obs.get('subs', {}), obs.get('srvs', {})
+    p1, p2 = obs.get('pose1', []), obs.get('pose2', [])
+    launch_err = obs.get('launch_error')
+
+    # 1. two turtlesims
+    missing = []
+    for ns, path in ((ns1, p1), (ns2, p2)):
+        topic = ns + '/turtle1/pose'
+        if not any(topic in ts for ts in pubs.values()) or not path:
+            missing.append(topic)
+    if launch_err:
+        c['1'].set(False, reason('roslaunch: %s' % launch_err, 'roslaunch: %s' % launch_err))
+    elif missing:
+        c['1'].set(False, reason('никто не публикует %s' % ', '.join(missing),
+                                 'nobody publishes %s' % ', '.join(missing)))
+    else:
+        sims = sorted(n for n, ts in pubs.items() if ns1 + '/turtle1/pose' in ts or ns2 + '/turtle1/pose' in ts)
+        c['1'].set(True, reason('turtlesim: %s' % ', '.join(sims), 'turtlesim: %s' % ', '.join(sims)))
+
+    # 2. turtle 1 visits the points
+    i1 = first_motion(p1)
+    v1 = visits(p1, pts, POINT_TOL)
+    miss = [q for q in pts if v1[q][1] is None]
+    t_start = p1[i1][0] if i1 is not None else None
+    t_done = max(v1[q][1] for q in pts) if not miss and pts else None
+    if not p1:
+        c['2'].set(False, reason('нет поз черепахи 1', 'no pose of turtle 1 was received'))
+    elif i1 is None:
+        c['2'].set(False, reason('черепаха 1 не двигалась', 'turtle 1 never moved'))
+    elif miss:
+        c['2'].set(False, reason('пропущены точки: %s' % ', '.join('%s (ближе всего %.2f м)' % (fmt_pt(q), v1[q][0]) for q in miss),
+                                 'points missed: %s' % ', '.join('%s (closest %.2f m)' % (fmt_pt(q), v1[q][0]) for q in miss)))
+    else:
+        order = sorted(pts, key=lambda q: v1[q][1])
+        txt = ', '.join('%s %.2f m @%.1f s' % (fmt_pt(q), v1[q][0], v1[q][1] - t_start) for q in order)
+        c['2'].set(True, reason('пройдены (допуск %.1f м): %s' % (POINT_TOL, txt.replace(' m ', ' м ').replace(' s', ' с')),
+                                'visited (tolerance %.1f m): %s' % (POINT_TOL, txt)), order=[list(q) for q in order])
+
+    # 3. the time on result_<ISU>
+    results = obs.get('results', {})
+    named = sorted(t for t in results if t.endswith('/result_' + isu))
+    got = [(t, s[-1][1]) for t, s in sorted(results.items()) if t in named and s]
+    observed = (t_done - t_start) if t_done is not None else None
+    if not named:
+        c['3'].set(False, reason('нет топика, оканчивающегося на result_%s' % isu, 'no topic ending in result_%s' % isu))
+    elif not got:
+        c['3'].set(False, reason('в %s ничего не опубликовано' % named[0], 'nothing was published on %s' % named[0]))
+    elif observed is None:
+        c['3'].set(False, reason('черепаха 1 не прошла все точки: время не с чем сравнить',
+                                 'turtle 1 did not visit every point: nothing to compare the time with'))
+    else:
+        topic, reported = got[0]
+        tol = TIME_ABS_TOL + TIME_REL_TOL * observed
+        if abs(reported - observed) > tol:
+            c['3'].set(False, reason('в %s %.2f с, а измерено %.2f с (допуск ±%.1f с)' % (topic, reported, observed, tol),
+                                     '%s says %.2f s, measured %.2f s (tolerance ±%.1f s)' % (topic, reported, observed, tol)))
+        else:
+            c['3'].set(True, reason('%s: %.2f с, измерено %.2f с' % (topic, reported, observed),
+                                    '%s: %.2f s, measured %.2f s' % (topic, reported, observed)),
+                       reported=reported, observed=observed)
+
+    # 4. turtle 2 follows
+    cmd2 = ns2 + '/turtle1/cmd_vel'
+    pose1 = ns1 + '/turtle1/pose'
+    drivers = sorted(n for n, ts in pubs.items() if cmd2 in ts)
+    deaf = [n for n in drivers if pose1 not in subs.get(n, [])]
+    rm = obs.get('remaps', [])
+    i2 = first_motion(p2)
+    v2 = visits(p2, pts, T2_POINT_TOL)
+    miss2 = [q for q in pts if v2[q][1] is None]
+    dev = path_deviation(p1[i1 - 1 if i1 else 0:], p2[i2 - 1 if i2 else 0:]) if (p1 and p2) else math.inf
+    if rm:
+        c['4'].set(False, reason('remap запрещён: %s' % rm[0], 'remap is forbidden: %s' % rm[0]))
+    elif not drivers:
+        c['4'].set(False, reason('никто не публикует %s' % cmd2, 'nobody publishes %s' % cmd2))
+    elif deaf:
+        c['4'].set(False, reason('%s управляет черепахой 2, но не подписан на %s' % (deaf[0], pose1),
+                                 '%s drives turtle 2 but does not subscribe to %s' % (deaf[0], pose1)))
+    elif i2 is None:
+        c['4'].set(False, reason('черепаха 2 не двигалась', 'turtle 2 never moved'))
+    elif dev > FOLLOW_TOL:
+        c['4'].set(False, reason('пути расходятся на %.2f м (допуск %.1f м)' % (dev, FOLLOW_TOL),
+                                 'the paths differ by up to %.2f m (tolerance %.1f m)' % (dev, FOLLOW_TOL)))
+    elif miss2:
+        c['4'].set(False, reason('черепаха 2 не прошла %s' % ', '.join(fmt_pt(q) for q in miss2),
+                                 'turtle 2 did not pass %s' % ', '.join(fmt_pt(q) for q in miss2)))
+    else:
+        c['4'].set(True, reason('отклонение путей %.2f м (допуск %.1f м), ведёт %s' % (dev, FOLLOW_TOL, ', '.join(drivers)),
+                                'path deviation %.2f m (tolerance %.1f m), driven by %s' % (dev, FOLLOW_TOL, ', '.join(drivers))),
+                   deviation=dev)
+
+    # 5. no global names
+    spaces = (ns1, ns2)
+    bad = []
+    for n in obs.get('nodes', []):
+        if not under(n, spaces):
+            bad.append('node %s' % n)
+            continue
+        for kind, table in (('topic', pubs), ('topic', subs), ('service', srvs)):
+            for t in table.get(n, []):
+                if not under(t, spaces) and t not in ALLOWED_GLOBAL:
+                    bad.append('%s %s (%s)' % (kind, t, n))
+    bad = sorted(set(bad))
+    lits = obs.get('global_literals', [])
+    if bad:
+        c['5'].set(False, reason('глобальное имя: %s' % bad[0] + (' и ещё %d' % (len(bad) - 1) if len(bad) > 1 else ''),
+                                 'global name: %s' % bad[0] + (' and %d more' % (len(bad) - 1) if len(bad) > 1 else '')))
+    elif lits:
+        c['5'].set(False, reason('в скрипте глобальное имя: %s' % lits[0], 'a script hardcodes a global name: %s' % lits[0]))
+    elif not obs.get('nodes'):
+        c['5'].set(False, reason('узлы не запустились', 'no node came up'))
+    else:
+        c['5'].set(True, reason('%d узлов, все имена внутри %s, %s' % (len(obs['nodes']), ns1, ns2),
+                                '%d nodes, every name under %s, %s' % (len(obs['nodes']), ns1, ns2)))
+
+    # 6. time limit and walls
+    walls = obs.get('wall_msgs', []) + ['%s at (%.2f, %.2f)' % (w, p[1], p[2]) for w, path in (('turtle 1', p1), ('turtle 2', p2))
+                                        for p in wall_hits(path)[:1]]
+    end = obs.get('end_reason')
+    dur = obs.get('duration', 0.0)
+    if walls:
+        c['6'].set(False, reason('удар о стену: %s' % walls[0], 'hit a wall: %s' % walls[0]))
+    elif end == 'limit':
+        c['6'].set(False, reason('черепахи двигались дольше %.0f с' % RUN_LIMIT, 'the turtles were still moving after %.0f s' % RUN_LIMIT))
+    elif end == 'no_motion' or i1 is None:
+        c['6'].set(False, reason('черепаха 1 не двигалась %.0f с' % NO_MOTION_LIMIT, 'turtle 1 did not move for %.0f s' % NO_MOTION_LIMIT))
+    elif end == 'launch_exited':
+        c['6'].set(False, reason('roslaunch завершился раньше времени', 'roslaunch exited early'))
+    elif miss:
+        c['6'].set(False, reason('остановились, не пройдя все точки', 'stopped before visiting every point'))
+    else:
+        c['6'].set(True, reason('всё завершено за %.1f с (лимит %.0f с), путь черепахи 1 %.1f м' % (dur, RUN_LIMIT, path_length(p1)),
+                                'all done in %.1f s (limit %.0f s), turtle 1 drove %.1f m' % (dur, RUN_LIMIT, path_length(p1))))
+    return [c[i] for i in '123456']

@@ -1,0 +1,184 @@
+"""The rospy side of the checkers: start the student's nodes, watch the master and topics.
+
+Each observer gathers a plain dict that grading.lab1 / grading.lab2 evaluate. Time stamps are
+wall seconds (time.monotonic) so that a stalled node cannot stall the clock.
+"""
+import os
+import signal
+import subprocess
+import threading
+import time
+
+import rosgraph
+import roslib.message
+import rospy
+
+IGNORED_NODES = ('/rosout',)
+
+
+def numeric(msg):
+    """The number in a std_msgs-like message (`data` field), or None."""
+    v = getattr(msg, 'data', None)
+    if isinstance(v, bool):
+        return float(v)
+    if isinstance(v, (int, float)):
+        return float(v)
+    if hasattr(v, 'to_sec'):
+        return float(v.to_sec())
+    return None
+
+
+def last_line(path):
+    try:
+        with open(path, errors='replace') as f:
+            lines = [l.strip() for l in f.read().splitlines() if l.strip()]
+    except OSError:
+        return ''
+    return lines[-1][:200] if lines else '(no output)'
+
+
+class Child:
+    """A student process in its own process group, output logged."""
+
+    def __init__(self, cmd, log, env=None):
+        self.log = log
+        self._out = open(log, 'wb')
+        self.p = subprocess.Popen(cmd, stdout=self._out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                  env=env, start_new_session=True)
+
+    def rc(self):
+        return self.p.poll()
+
+    def stop(self):
+        for sig, t in ((signal.SIGINT, 8.0), (signal.SIGTERM, 3.0), (signal.SIGKILL, 3.0)):
+            if self.p.poll() is not None:
+                break
+            try:
+                os.killpg(self.p.pid, sig)
+                self.p.wait(t)
+            except (ProcessLookupError, subprocess.TimeoutExpired):
+                continue
+        try:
+            os.killpg(self.p.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
+        self._out.close()
+
+
+class GraphWatcher:
+    """Accumulates the master's system state; subscribes to topics on request."""
+
+    def __init__(self):
+        self.me = rospy.get_name()
+        self.master = rosgraph.Master(self.me)
+        self.nodes = set()
+        self.pubs, self.subs, self.srvs = {}, {}, {}
+        self.types = {}
+        self.msgs = {}
+        self._subscribed = {}
+        self.lock = threading.Lock()
+
+    def poll(self):
+        try:
+            pubs, subs, srvs = self.master.getSystemState()
+            types = dict(self.master.getTopicTypes())
+        except Exception:   # master busy: try again next poll
+            return False
+        self.types.update(types)
+        for table, dest in ((pubs, self.pubs), (subs, self.subs), (srvs, self.srvs)):
+            for name, nodes in table:
+                for n in nodes:
+                    if n == self.me or n in IGNORED_NODES:
+                        continue
+                    self.nodes.add(n)
+                    dest.setdefault(n, set()).add(name)
+        return True
+
+    def listen(self, topic, convert=numeric, cls=None):
+        """Record (t, convert(msg)) of a topic; type looked up from the master unless given."""
+        if topic in self._subscribed:
+            return True
+        if cls is None:
+            t = self.types.get(topic)
+            cls = roslib.message.get_message_class(t) if t else None
+            if cls is None:
+                return False
+        self.msgs.setdefault(topic, [])
+
+        def cb(msg, topic=topic):
+            v = convert(msg)
+            if v is not None:
+                with self.lock:
+                    self.msgs[topic].append((time.monotonic(), v))
+        self._subscribed[topic] = rospy.Subscriber(topic, cls, cb, queue_size=100)
+        return True
+
+    def series(self, topic):
+        with self.lock:
+            return list(self.msgs.get(topic, []))
+
+    def state(self):
+        return {'nodes': sorted(self.nodes),
+                'pubs': {n: sorted(t) for n, t in self.pubs.items()},
+                'subs': {n: sorted(t) for n, t in self.subs.items()},
+                'srvs': {n: sorted(t) for n, t in self.srvs.items()},
+                'types': dict(self.types)}
+
+
+class Lab1Observer:
+    """Start node1..3 of the student's package, watch numbers and the result."""
+
+    def __init__(self, isu, scripts, logdir):
+        from grading import lab1
+        self.lab1 = lab1
+        self.isu = isu
+        self.scripts = scripts      # {'node1.py': path, ...}
+        self.logdir = logdir
+        self.graph = GraphWatcher()
+
+    def run(self):
+        lab1 = self.lab1
+        children = {}
+        start = time.monotonic()
+        not_exec = [n + '.py' for n in lab1.NODES
+                    if n + '.py' in self.scripts and not os.access(self.scripts[n + '.py'], os.X_OK)]
+        for n in lab1.NODES:
+            path = self.scripts.get(n + '.py')
+            if path and n + '.py' not in not_exec:
+                children[n] = Child([path, '_isu:=%s' % self.isu], os.path.join(self.logdir, n + '.log'))
+        comp, _, _ = lab1.roles(self.isu)
+        first_result = None
+        try:
+            while not rospy.is_shutdown():
+                now = time.monotonic()
+                self.graph.poll()
+                for topic, nodes_pub in self._student_topics():
+                    self.graph.listen(topic)
+                res = [t for t in lab1.result_topics(self.isu, comp) if self.graph.series(t)]
+                if res and first_result is None:
+                    first_result = now
+                if first_result is not None and now - first_result >= lab1.OBSERVE:
+                    break
+                if first_result is None and now - start > lab1.STARTUP_LIMIT:
+                    break
+                if children and all(c.rc() is not None for c in children.values()):
+                    time.sleep(0.5)
+                    break
+                time.sleep(0.2)
+            end = time.monotonic()
+            procs = {n: {'rc': c.rc(), 'last': last_line(c.log) if c.rc() is not None else ''}
+                     for n, c in children.items()}
+        finally:
+            for c in children.values():
+                c.stop()
+        obs = {'isu': self.isu, 'scripts': sorted(self.scripts), 'not_executable': not_exec,
+               'procs': procs, 'start': start, 'end': end,
+               'msgs': {t: self.graph.series(t) for t in self.graph.msgs}}
+        obs.update(self.graph.state())
+        return obs
+
+    def _student_topics(self):
+        for n, topics in list(self.graph.pubs.items()):
+            for t in topics:
+                if t not in ('/rosout', '/rosout_agg'):
+                    yield t, n

@@ -1,0 +1,40 @@
+"""Console report and JUnit XML of a grading run."""
+import xml.etree.ElementTree as ET
+
+OK = '\u2714'
+FAIL = '\u2718'
+
+
+def format_report(lab, isu, criteria):
+    lines = ['%s, ISU %s (variant %s):' % (lab, isu, isu[-1])]
+    for c in criteria:
+        mark = OK if c.passed else FAIL
+        lines.append('%s %s. %s / %s' % (mark, c.id, c.title_ru, c.title_en))
+        r = c.reason
+        if r.get('ru') or r.get('en'):
+            if r.get('ru') == r.get('en'):
+                lines.append('    %s' % r['en'])
+            else:
+                lines.append('    %s' % r.get('ru', ''))
+                lines.append('    %s' % r.get('en', ''))
+    n = sum(1 for c in criteria if c.passed)
+    lines.append('%d/%d criteria passed: %s' % (n, len(criteria), 'PASS' if n == len(criteria) else 'FAIL'))
+    return '\n'.join(lines)
+
+
+def write_junit(path, lab, isu, criteria, elapsed=0.0):
+    failures = sum(1 for c in criteria if not c.passed)
+    suite = ET.Element('testsuite', name='%s-%s' % (lab, isu), tests=str(len(criteria)),
+                       failures=str(failures), errors='0', time='%.1f' % elapsed)
+    for c in criteria:
+        case = ET.SubElement(suite, 'testcase', classname='%s.variant%s' % (lab, isu[-1]),
+                             name='%s_%s' % (c.id, c.title_en.lower().replace(' ', '_')[:60]))
+        text = '%s / %s' % (c.reason.get('en', ''), c.reason.get('ru', ''))
+        if not c.passed:
+            f = ET.SubElement(case, 'failure', message=c.reason.get('en', ''))
+            f.text = text
+        else:
+            ET.SubElement(case, 'system-out').text = text
+    root = ET.Element('testsuites', tests=str(len(criteria)), failures=str(failures))
+    root.append(suite)
+    ET.ElementTree(root).write(path, encoding='utf-8', xml_declaration=True)
