@@ -1,0 +1,280 @@
+"""Practical work 2 replayed as a student does it (textbook chapter 3).
+
+`catkin_create_pkg my_super_robot_controller rospy std_msgs`, scripts/super_node.py, custom
+messages (Num, Position2d) with message_generation/message_runtime, `rosmsg show`, the
+position2d republisher, launch/my_setup.launch, two controllers in namespaces, and the
+textbook's launch example with turtlesim's mimic node.
+"""
+import importlib.util
+import math
+import os
+import shutil
+import sys
+
+import pytest
+
+from course_testing import screenshot, wait_for
+
+_spec = importlib.util.spec_from_file_location(
+    'course_tasks_student_shell', os.path.join(os.path.dirname(__file__), 'student_shell.py'))
+S = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(S)
+
+PKG = 'my_super_robot_controller'
+REFERENCE = os.path.join(os.path.dirname(os.path.abspath(__file__)), 'task_2', 'reference', PKG)
+FIELD = 11.088889
+CENTRE = FIELD / 2
+
+
+@pytest.fixture
+def roscore(tmp_path):
+    """A private roscore (the root conftest's fixture, with its log directory created first)."""
+    from course_testing import RosCore
+    log_dir = tmp_path / 'ros_log'
+    log_dir.mkdir(exist_ok=True)
+    core = RosCore(log_dir=str(log_dir))
+    core.start()
+    try:
+        yield core
+    finally:
+        core.stop()
+
+
+@pytest.fixture(scope='module')
+def workspace(tmp_path_factory):
+    """Sections 3.1-3.4: create the package with catkin_create_pkg, fill it in, catkin build."""
+    ws = S.make_workspace(tmp_path_factory.mktemp('task2'))
+    src = os.path.join(ws, 'src')
+    out = S.sh(['catkin_create_pkg', PKG, 'rospy', 'std_msgs'], S.shell_env(), cwd=src)
+    pkg = os.path.join(src, PKG)
+    created = sorted(os.listdir(pkg))
+    with open(os.path.join(pkg, 'package.xml')) as f:
+        generated_xml = f.read()
+    # what catkin_create_pkg left for the student; then the student's edits (the reference)
+    for d in ('scripts', 'msg', 'launch'):
+        os.mkdir(os.path.join(pkg, d))
+    with open(os.path.join(pkg, 'msg', 'Num.msg'), 'w') as f:
+        f.write('int64 num\n')                                   # echo "int64 num" > msg/Num.msg
+    for name in ('package.xml', 'CMakeLists.txt'):
+        shutil.copy2(os.path.join(REFERENCE, name), os.path.join(pkg, name))
+    for d in ('scripts', 'msg', 'launch'):
+        for name in os.listdir(os.path.join(REFERENCE, d)):
+            shutil.copy2(os.path.join(REFERENCE, d, name), os.path.join(pkg, d, name))
+    build = S.catkin_build(ws)
+    return dict(ws=ws, pkg=pkg, env=S.overlay_env(ws), created=created, create_out=out,
+                generated_xml=generated_xml, build=build)
+
+
+def test_catkin_create_pkg_creates_package(workspace):
+    assert workspace['created'] == ['CMakeLists.txt', 'package.xml', 'src']
+    assert 'Successfully created files' in workspace['create_out']
+    xml = workspace['generated_xml']
+    assert '<name>my_super_robot_controller</name>' in xml
+    assert '<build_depend>rospy</build_depend>' in xml and '<exec_depend>std_msgs</exec_depend>' in xml
+
+
+def test_package_builds_and_is_found(workspace):
+    assert 'Failed: No packages failed' in workspace['build'] or 'succeeded' in workspace['build']
+    env = workspace['env']
+    assert S.sh(['rospack', 'find', PKG], env).strip() == workspace['pkg']
+    deps = S.sh(['rospack', 'depends1', PKG], env).split()
+    for d in ('rospy', 'std_msgs', 'message_runtime'):
+        assert d in deps, deps
+    assert 'roscpp' in S.sh(['rospack', 'depends', PKG], env).split()     # indirect, via rospy
+
+
+def test_rosmsg_show_custom_messages(workspace):
+    env = workspace['env']
+    num = S.sh(['rosmsg', 'show', PKG + '/Num'], env).split('\n')
+    assert [l for l in num if l] == ['string first_name', 'string last_name', 'uint8 age',
+                                    'uint32 score']
+    pos = S.sh(['rosmsg', 'show', PKG + '/Position2d'], env).split('\n')
+    assert [l for l in pos if l] == ['float32 x', 'float32 y']
+    assert PKG + '/Position2d' in S.sh(['rosmsg', 'package', PKG], env).split()
+    # a package that does not exist: one clear error, non-zero exit
+    rc, out, err = S.sh_rc(['rosmsg', 'show', PKG + '/NoSuchMsg'], env)
+    assert rc != 0 and 'Traceback' not in err
+
+
+def test_pure_logic_of_the_nodes(workspace, monkeypatch):
+    """The decision functions of the scripts, without a master."""
+    monkeypatch.syspath_prepend(os.path.join(workspace['ws'], 'devel', 'lib', 'python3',
+                                             'dist-packages'))
+    for name in list(sys.modules):
+        if name.split('.')[0] == PKG:
+            monkeypatch.delitem(sys.modules, name)
+    super_node = _load_script(os.path.join(REFERENCE, 'scripts', 'super_node.py'), 't2_super')
+    assert super_node.compute_cmd(CENTRE) == (2.0, 0.0)
+    assert super_node.compute_cmd(9.5) == (1.0, 1.4)
+    assert super_node.compute_cmd(1.0) == (1.0, 1.4)
+    ctl = _load_script(os.path.join(REFERENCE, 'scripts', 'controller.py'), 't2_controller')
+    assert ctl.compute_cmd(CENTRE, CENTRE, 2.0) == (2.0, 0.0)
+    assert ctl.compute_cmd(CENTRE, 10.0, 2.0) == (1.0, 1.4)     # near the top wall too
+    assert ctl.compute_cmd(0.5, CENTRE, 3.0) == (1.5, 1.4)
+    assert ctl.check_speed('1.5') == 1.5
+    for bad in (-1, 0, 'fast', float('nan'), None):
+        with pytest.raises(ValueError, match='~speed'):
+            ctl.check_speed(bad)
+    pos = _load_script(os.path.join(REFERENCE, 'scripts', 'position2d_node.py'), 't2_pos')
+    from turtlesim.msg import Pose
+    p = pos.to_position2d(Pose(x=1.25, y=3.5, theta=0.3))
+    assert (p.x, p.y) == (1.25, 3.5) and type(p).__name__ == 'Position2d'
+
+
+def _load_script(path, name):
+    spec = importlib.util.spec_from_file_location(name, path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+# A child process that listens to a pose topic and a Position2d topic for a while and prints
+# what it saw as one YAML line: every position2d must be the (x, y) of a pose published.
+PROBE = r'''
+import json, sys, time, rospy
+from turtlesim.msg import Pose
+from my_super_robot_controller.msg import Position2d
+pose_topic, pos_topic, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
+rospy.init_node('probe', anonymous=True)
+poses, positions = [], []
+rospy.Subscriber(pose_topic, Pose, lambda m: poses.append((m.x, m.y, m.theta, m.linear_velocity, m.angular_velocity)))
+rospy.Subscriber(pos_topic, Position2d, lambda m: positions.append((m.x, m.y)))
+deadline = time.time() + 30
+while len(positions) < n and time.time() < deadline and not rospy.is_shutdown():
+    time.sleep(0.05)
+time.sleep(0.2)
+seen = set((p[0], p[1]) for p in poses)
+matched = sum(1 for q in positions if q in seen)
+print(json.dumps({'poses': len(poses), 'positions': len(positions), 'matched': matched,
+       'x_max': max([p[0] for p in poses] or [0]), 'x_min': min([p[0] for p in poses] or [0]),
+       'turning': sum(1 for p in poses if abs(p[4] - 1.4) < 1e-3 and p[3] == 1.0),
+       'straight': sum(1 for p in poses if p[4] == 0.0 and p[3] == 2.0),
+       'turn_x_ok': all(p[0] > 8.9 or p[0] < 2.1 for p in poses if abs(p[4] - 1.4) < 1e-3)}))
+'''
+
+
+def _probe(env, pose_topic, pos_topic, n):
+    return S.run_probe(PROBE.replace('sys.argv[1], sys.argv[2], int(sys.argv[3])',
+                                     '%r, %r, %d' % (pose_topic, pos_topic, n)), env, timeout=60)
+
+
+def test_super_node_with_rosrun(workspace, roscore, xvfb, tmp_path):
+    """Section 3.2: rosrun turtlesim turtlesim_node + rosrun ... super_node.py."""
+    env = S.with_master(workspace['env'], roscore, xvfb)
+    sim = S.launch(['rosrun', 'turtlesim', 'turtlesim_node'], env, tmp_path / 'sim.log')
+    node = S.launch(['rosrun', PKG, 'super_node.py'], env, tmp_path / 'node.log')
+    try:
+        S.wait_output(node, 'Node started...')
+        S.wait_output(node, 'Super node sending new msg')
+        p0 = S.wait_topic('/turtle1/pose', env)
+        wait_for(lambda: S.echo_once('/turtle1/pose', env)['x'] > 9.0, 20, 0.2,
+                 'the turtle to reach x > 9 (2 m/s from the centre)')
+        p1 = S.echo_once('/turtle1/pose', env)
+        assert p1['linear_velocity'] in (1.0, 2.0)
+        assert (p1['x'], p1['y']) != (p0['x'], p0['y'])
+        assert '/turtle_super_node' in S.sh(['rosnode', 'list'], env).split()
+    finally:
+        S.stop_all(node, sim)
+
+
+def test_my_setup_launch(workspace, roscore, xvfb, tmp_path):
+    """Sections 3.3.3 and 3.4.1: roslaunch my_setup.launch starts turtlesim, the controller and
+    the position2d republisher; the turtle drives and turns near the walls."""
+    env = S.with_master(workspace['env'], roscore, xvfb)
+    lp = S.launch(['roslaunch', PKG, 'my_setup.launch'], env, tmp_path / 'launch.log')
+    try:
+        S.wait_topic('/position2d', env)
+        nodes = S.sh(['rosnode', 'list'], env).split()
+        for n in ('/sim', '/my_super_robot_controller', '/position2d_node'):
+            assert n in nodes, nodes
+        assert S.sh(['rostopic', 'type', '/position2d'], env).strip() == PKG + '/Position2d'
+        seen = _probe(env, '/turtle1/pose', '/position2d', 300)   # ~5 s of motion at 62.5 Hz
+        assert seen['positions'] >= 300 and seen['poses'] >= 300, seen
+        assert seen['matched'] >= seen['positions'] - 2, seen     # position2d carries pose x, y
+        assert seen['straight'] > 0 and seen['turning'] > 0, seen  # both branches of the law
+        assert seen['turn_x_ok'], seen
+        assert seen['x_max'] > 9.0, seen
+        pos = S.echo_once('/position2d', env)
+        assert 0.0 <= pos['x'] <= FIELD and 0.0 <= pos['y'] <= FIELD
+        png = str(tmp_path / 'my_setup.png')
+        screenshot(xvfb.display, png)
+        if os.environ.get('COURSE_SHOTS_DIR'):
+            shutil.copy(png, os.path.join(os.environ['COURSE_SHOTS_DIR'], 'task2_my_setup.png'))
+        assert S.unique_colours(png) > 5
+        assert 'Super node sending new msg' in lp.output()
+    finally:
+        lp.stop()
+
+
+def test_two_controllers_in_namespaces(workspace, roscore, xvfb, tmp_path):
+    """Section 3.4: <group ns="ns1"> / <group ns="ns2">, each a turtlesim with its controller."""
+    env = S.with_master(workspace['env'], roscore, xvfb)
+    lp = S.launch(['roslaunch', PKG, 'my_setup_ns.launch'], env, tmp_path / 'launch.log')
+    try:
+        S.wait_topic('/ns1/position2d', env)
+        S.wait_topic('/ns2/position2d', env)
+        nodes = S.sh(['rosnode', 'list'], env).split()
+        for n in ('/ns1/sim', '/ns1/controller', '/ns2/sim', '/ns2/controller'):
+            assert n in nodes, nodes
+        topics = S.sh(['rostopic', 'list'], env).split()
+        for ns in ('/ns1', '/ns2'):
+            for t in ('/turtle1/pose', '/turtle1/cmd_vel', '/position2d'):
+                assert ns + t in topics, topics
+        assert '/turtle1/pose' not in topics and '/position2d' not in topics
+        for ns, speed in (('/ns1', 2.0), ('/ns2', 1.0)):     # ns2 sets ~speed 1.0
+            seen = _probe(env, ns + '/turtle1/pose', ns + '/position2d', 100)
+            assert seen['matched'] >= seen['positions'] - 2 and seen['positions'] >= 100, (ns, seen)
+            first = S.echo_once(ns + '/turtle1/pose', env)
+            moved = wait_for(lambda: _moved(S.echo_once(ns + '/turtle1/pose', env), first, 0.5),
+                             20, 0.2, 'the %s turtle to move' % ns)
+            assert moved['linear_velocity'] in (speed, speed / 2), (ns, moved)
+        assert 'driving turtle /ns1/turtle1 at 2.00 m/s' in lp.output()
+        assert 'driving turtle /ns2/turtle1 at 1.00 m/s' in lp.output()
+    finally:
+        lp.stop()
+
+
+def _moved(pose, first, dist):
+    return pose if math.hypot(pose['x'] - first['x'], pose['y'] - first['y']) > dist else None
+
+
+def test_mimic_launch(workspace, roscore, xvfb, tmp_path):
+    """The textbook's launch example: turtlesim2's turtle repeats turtlesim1's motion."""
+    env = S.with_master(workspace['env'], roscore, xvfb)
+    lp = S.launch(['roslaunch', PKG, 'mimic.launch'], env, tmp_path / 'launch.log')
+    drive = None
+    try:
+        S.wait_topic('/turtlesim1/turtle1/pose', env)
+        S.wait_topic('/turtlesim2/turtle1/pose', env)
+        nodes = S.sh(['rosnode', 'list'], env).split()
+        for n in ('/turtlesim1/sim', '/turtlesim2/sim', '/mimic'):
+            assert n in nodes, nodes
+        info = S.sh(['rosnode', 'info', '/mimic'], env)
+        assert '/turtlesim1/turtle1/pose' in info and '/turtlesim2/turtle1/cmd_vel' in info, info
+        start = S.echo_once('/turtlesim2/turtle1/pose', env)
+        drive = S.launch(['rostopic', 'pub', '-r', '5', '/turtlesim1/turtle1/cmd_vel',
+                          'geometry_msgs/Twist', '{linear: {x: 1.5}, angular: {z: 0.9}}'],
+                         env, tmp_path / 'pub.log')
+        wait_for(lambda: _moved(S.echo_once('/turtlesim2/turtle1/pose', env), start, 1.5),
+                 20, 0.2, 'turtle 2 to follow turtle 1')
+        drive.stop()
+        drive = None
+
+        def both_stopped():
+            a = S.echo_once('/turtlesim1/turtle1/pose', env)
+            b = S.echo_once('/turtlesim2/turtle1/pose', env)
+            return (a, b) if a['linear_velocity'] == 0.0 and b['linear_velocity'] == 0.0 else None
+        a, b = wait_for(both_stopped, 15, 0.2, 'both turtles to stop')
+        assert math.hypot(a['x'] - b['x'], a['y'] - b['y']) < 0.5, (a, b)
+        assert abs(math.remainder(a['theta'] - b['theta'], 2 * math.pi)) < 0.3, (a, b)
+        assert math.hypot(b['x'] - start['x'], b['y'] - start['y']) > 1.5, (b, start)
+    finally:
+        S.stop_all(drive, lp)
+
+
+def test_controller_rejects_bad_speed(workspace, roscore, tmp_path):
+    env = S.with_master(workspace['env'], roscore)
+    rc, out, err = S.sh_rc(['rosrun', PKG, 'controller.py', '_speed:=-1'], env, timeout=60)
+    assert rc != 0
+    assert 'parameter ~speed must be a positive number' in err, (out, err)
+    assert 'Traceback' not in err + out
