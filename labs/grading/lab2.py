@@ -125,12 +125,15 @@ def global_literals(pkg_dir):
 # --- path geometry ------------------------------------------------------------------------
 
 def first_motion(path, eps=MOVE_EPS):
-    """Index of the first pose that differs from the first one by more than eps, or None."""
+    """Index of the first pose (t, x, y[, theta]) that moved more than eps or turned more
+    than 0.05 rad from the first one, or None."""
     if not path:
         return None
     x0, y0 = path[0][1], path[0][2]
+    th0 = path[0][3] if len(path[0]) > 3 else 0.0
     for i, p in enumerate(path):
-        if math.hypot(p[1] - x0, p[2] - y0) > eps:
+        turned = abs(math.atan2(math.sin(p[3] - th0), math.cos(p[3] - th0))) if len(p) > 3 else 0.0
+        if math.hypot(p[1] - x0, p[2] - y0) > eps or turned > 0.05:
             return i
     return None
 

@@ -182,3 +182,126 @@ class Lab1Observer:
             for t in topics:
                 if t not in ('/rosout', '/rosout_agg'):
                     yield t, n
+
+
+def launch_failure(log):
+    """The telling line of a failed roslaunch's output."""
+    try:
+        with open(log, errors='replace') as f:
+            lines = [l.strip() for l in f.read().splitlines() if l.strip()]
+    except OSError:
+        return 'roslaunch failed (no output)'
+    for key in ('RLException', 'ResourceNotFound', 'Resource not found', 'ERROR', 'Error', 'error'):
+        for l in lines:
+            if key in l:
+                return l[:250]
+    return (lines[-1] if lines else 'no output')[:250]
+
+
+class Motion:
+    """Tracks when a turtle last moved (position by MOVE_EPS or heading by 0.05 rad)."""
+
+    def __init__(self, eps):
+        self.eps = eps
+        self.anchor = None
+        self.moved_at = None
+        self.ever = False
+
+    def update(self, t, x, y, th):
+        import math
+        if self.anchor is None:
+            self.anchor = (x, y, th)
+            return
+        ax, ay, ath = self.anchor
+        dth = abs(math.atan2(math.sin(th - ath), math.cos(th - ath)))
+        if math.hypot(x - ax, y - ay) > self.eps or dth > 0.05:
+            self.anchor = (x, y, th)
+            self.moved_at = t
+            self.ever = True
+
+
+class Lab2Observer:
+    """roslaunch the student's lab2_setup.launch, watch both turtles, the result and names."""
+
+    def __init__(self, isu, pkg_dir, logdir, run_limit=None):
+        from grading import lab2
+        self.lab2 = lab2
+        self.isu = isu
+        self.pkg_dir = pkg_dir
+        self.logdir = logdir
+        self.run_limit = run_limit or lab2.RUN_LIMIT
+        self.graph = GraphWatcher()
+        self.walls = []
+
+    def _rosout(self, msg):
+        if 'wall' in msg.msg.lower() and self.lab2.under(msg.name, self.lab2.namespaces(self.isu)):
+            self.walls.append('%s: %s' % (msg.name, msg.msg[:120]))
+
+    def run(self, progress=None):
+        lab2 = self.lab2
+        from rosgraph_msgs.msg import Log
+        ns1, ns2 = lab2.namespaces(self.isu)
+        obs = {'isu': self.isu, 'remaps': lab2.remaps(self.pkg_dir),
+               'global_literals': lab2.global_literals(self.pkg_dir)}
+        launch = lab2.find_launch(self.pkg_dir)
+        if launch is None:
+            obs['launch_error'] = 'launch/%s not found in package %s' % (lab2.LAUNCH, lab2.PACKAGE)
+            obs['end_reason'] = 'launch_exited'
+            return obs
+        try:
+            from turtlesim.msg import Pose
+        except ImportError:
+            raise RuntimeError('turtlesim is not built in the course workspace (no turtlesim.msg)')
+        conv = lambda m: (m.x, m.y, m.theta)  # noqa: E731
+        self.graph.listen(ns1 + '/turtle1/pose', conv, Pose)
+        self.graph.listen(ns2 + '/turtle1/pose', conv, Pose)
+        rospy.Subscriber('/rosout_agg', Log, self._rosout, queue_size=200)
+        cmd = ['roslaunch', lab2.PACKAGE, lab2.LAUNCH]
+        if lab2.declares_isu(launch):
+            cmd.append('isu:=%s' % self.isu)
+        log = os.path.join(self.logdir, 'roslaunch.log')
+        start = time.monotonic()
+        child = Child(cmd, log)
+        motion = {1: Motion(lab2.MOVE_EPS), 2: Motion(lab2.MOVE_EPS)}
+        seen = {1: 0, 2: 0}
+        end_reason = None
+        try:
+            while not rospy.is_shutdown():
+                now = time.monotonic()
+                self.graph.poll()
+                for t in list(self.graph.types):
+                    if t.endswith('/result_' + self.isu):
+                        self.graph.listen(t)
+                for k, topic in ((1, ns1 + '/turtle1/pose'), (2, ns2 + '/turtle1/pose')):
+                    s = self.graph.series(topic)
+                    for (t, (x, y, th)) in s[seen[k]:]:
+                        motion[k].update(t, x, y, th)
+                    seen[k] = len(s)
+                last = max([m.moved_at for m in motion.values() if m.moved_at] or [0.0])
+                if child.rc() is not None:
+                    end_reason = 'launch_exited'
+                    if not seen[1] and not seen[2]:
+                        obs['launch_error'] = launch_failure(log)
+                    break
+                if now - start > self.run_limit:
+                    end_reason = 'limit'
+                    break
+                if not motion[1].ever and now - start > lab2.NO_MOTION_LIMIT:
+                    end_reason = 'no_motion'
+                    break
+                if motion[1].ever and now - last > lab2.STILL_TIME:
+                    end_reason = 'still'
+                    break
+                if progress:
+                    progress(now - start, motion)
+                time.sleep(0.2)
+        finally:
+            child.stop()
+        obs['end_reason'] = end_reason
+        obs['duration'] = (max([m.moved_at for m in motion.values() if m.moved_at] or [start]) - start)
+        for k, topic in ((1, ns1 + '/turtle1/pose'), (2, ns2 + '/turtle1/pose')):
+            obs['pose%d' % k] = [(t, x, y, th) for t, (x, y, th) in self.graph.series(topic)]
+        obs['results'] = {t: self.graph.series(t) for t in self.graph.msgs if t.endswith('/result_' + self.isu)}
+        obs['wall_msgs'] = list(self.walls)
+        obs.update(self.graph.state())
+        return obs

@@ -1,4 +1,5 @@
 """Console report and JUnit XML of a grading run."""
+import re
 import xml.etree.ElementTree as ET
 
 OK = '\u2714'
@@ -28,7 +29,7 @@ def write_junit(path, lab, isu, criteria, elapsed=0.0):
                        failures=str(failures), errors='0', time='%.1f' % elapsed)
     for c in criteria:
         case = ET.SubElement(suite, 'testcase', classname='%s.variant%s' % (lab, isu[-1]),
-                             name='%s_%s' % (c.id, c.title_en.lower().replace(' ', '_')[:60]))
+                             name='%s_%s' % (c.id, re.sub(r'[^a-z0-9]+', '_', c.title_en.lower()).strip('_')[:60]))
         text = '%s / %s' % (c.reason.get('en', ''), c.reason.get('ru', ''))
         if not c.passed:
             f = ET.SubElement(case, 'failure', message=c.reason.get('en', ''))
