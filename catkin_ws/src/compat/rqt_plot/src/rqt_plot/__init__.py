@@ -1,0 +1,1 @@
+"""rqt_plot re-implementation: live plots of numeric fields of ROS messages (PyQt5 + pyqtgraph)."""
