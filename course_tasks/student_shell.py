@@ -105,7 +105,7 @@ def echo_once(topic, env, timeout=30.0):
     return yaml.safe_load(out.split('\n---')[0])
 
 
-def wait_topic(topic, env, timeout=40.0):
+def wait_topic(topic, env, timeout=90.0):
     """Wait until `topic` delivers a message; return it as a dict."""
     deadline = time.monotonic() + timeout
     last = None
@@ -118,7 +118,7 @@ def wait_topic(topic, env, timeout=40.0):
     raise AssertionError('no message on %s within %.0f s (%s)' % (topic, timeout, last))
 
 
-def wait_output(proc, text, timeout=40.0):
+def wait_output(proc, text, timeout=60.0):
     """Wait until a Proc started with a log prints `text`; fail with its output if it exits."""
     def seen():
         out = proc.output()
