@@ -125,7 +125,7 @@ def main():
             os.makedirs(outdir, exist_ok=True)
             print('=== rostest %s %s' % (pkg, rel), flush=True)
             t = time.monotonic()
-            rc, timed_out = run(['rostest', '--results-base-dir', outdir, pkg, f], ROSTEST_TIMEOUT,
+            rc, timed_out = run(['rostest', '--results-base-dir', outdir, f], ROSTEST_TIMEOUT,
                                 env=env, log=log)
             found = [x for x in glob.glob(os.path.join(outdir, '**', '*.xml'), recursive=True)
                      if not os.path.basename(x).startswith('rostest-')]

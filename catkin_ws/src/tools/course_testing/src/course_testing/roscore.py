@@ -12,6 +12,7 @@ class RosCore:
         self.port = port or free_port()
         self.uri = 'http://127.0.0.1:%d' % self.port
         self.log_dir = log_dir or tempfile.mkdtemp(prefix='roscore-')
+        os.makedirs(self.log_dir, exist_ok=True)
         self.env = dict(os.environ)
         self.env.update(ROS_MASTER_URI=self.uri, ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir)
         self.env.pop('ROS_HOSTNAME', None)
