@@ -1,0 +1,89 @@
+"""Lab 1 grader self-tests: the reference passes, seeded faults fail the right criterion."""
+import os
+
+import pytest
+
+from grading.selftest import run_cases
+
+CASES = {
+    # name: (ISU, faults seeded into a copy of the reference)
+    'ref_minus_node3': ('123456', {}),
+    'ref_div_node1': ('334409', {}),
+    'wrong_operation': ('123456', {'edits': [('src/my_robot_controller/numbers.py', "'-': a - b", "'-': b - a")]}),
+    'wrong_topic': ('123456', {'edits': [('src/my_robot_controller/numbers.py', "'result_%s' % isu", "'result%s' % isu")]}),
+    'four_nodes': ('123456', {'add': {'scripts/node4.py': '#!/usr/bin/env python3\nimport rospy\nrospy.init_node("node4")\nrospy.spin()\n'}}),
+    'node_crashes': ('123456', {'edits': [('scripts/node2.py', 'from my_robot_controller', 'raise RuntimeError("boom")\nfrom my_robot_controller')]}),
+    'cmake_syntax': ('123456', {'edits': [('CMakeLists.txt', 'catkin_package()', 'catkin_package(')]}),
+    'missing_dependency': ('123456', {'edits': [('CMakeLists.txt', 'rospy std_msgs)', 'rospy std_msgs no_such_pkg_xyz)')]}),
+    'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<', '<name>my_robot_controler<')]}),
+}
+
+
+@pytest.fixture(scope='module')
+def runs(tmp_path_factory):
+    return run_cases('lab1', CASES, str(tmp_path_factory.mktemp('lab1')), workers=3)
+
+
+def crit(runs, name):
+    rc, out, crits = runs[name]
+    assert crits, out
+    return rc, out, crits
+
+
+@pytest.mark.parametrize('name', ['ref_minus_node3', 'ref_div_node1'])
+def test_reference_passes(runs, name):
+    rc, out, crits = crit(runs, name)
+    assert rc == 0, out
+    assert sorted(crits) == ['0', '1', '2', '3', '4'] and all(p for p, _ in crits.values()), out
+
+
+def failed(crits):
+    return sorted(c for c, (p, _) in crits.items() if not p)
+
+
+def test_wrong_operation(runs):
+    rc, out, crits = crit(runs, 'wrong_operation')
+    assert rc == 1 and failed(crits) == ['3'], out
+    assert 'node1 - node2' in crits['3'][1] and 'wrong' in crits['3'][1]
+
+
+def test_wrong_topic(runs):
+    rc, out, crits = crit(runs, 'wrong_topic')
+    assert rc == 1 and '2' in failed(crits) and '1' not in failed(crits), out
+    assert 'does not publish /result_123456' in crits['2'][1]
+
+
+def test_four_nodes(runs):
+    rc, out, crits = crit(runs, 'four_nodes')
+    assert rc == 1 and failed(crits) == ['1'], out
+    assert 'extra node scripts' in crits['1'][1] and 'node4.py' in crits['1'][1]
+
+
+def test_node_crashes(runs):
+    rc, out, crits = crit(runs, 'node_crashes')
+    assert rc == 1 and '1' in failed(crits), out
+    assert 'node2.py exited with code 1' in crits['1'][1] and 'boom' in crits['1'][1]
+
+
+@pytest.mark.parametrize('name,words', [('cmake_syntax', 'does not build'),
+                                        ('missing_dependency', 'find_package(no_such_pkg_xyz)')])
+def test_build_failure(runs, name, words):
+    rc, out, crits = crit(runs, name)
+    assert rc == 1 and failed(crits) == ['0', '1', '2', '3', '4'], out
+    assert words in crits['0'][1]
+    assert crits['1'][1].startswith('not checked')
+
+
+def test_wrong_package_name(runs):
+    rc, out, crits = crit(runs, 'wrong_package_name')
+    assert rc == 1 and failed(crits) == ['0', '1', '2', '3', '4'], out
+    assert 'package my_robot_controller not found in' in crits['0'][1]
+    assert '(found: my_robot_controler)' in crits['0'][1]
+
+
+@pytest.mark.full
+def test_reference_all_variants(tmp_path):
+    cases = {'v%d' % d: ('12345%d' % d, {}) for d in range(10)}
+    res = run_cases('lab1', cases, str(tmp_path), workers=3)
+    bad = {n: r[1][-1500:] for n, r in res.items() if r[0] != 0}
+    assert not bad, bad
