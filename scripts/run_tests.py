@@ -54,6 +54,8 @@ def count_junit(path):
         return 0, 1, 0, ['%s: unreadable result file (%s)' % (path, e)]
     for case in root.iter('testcase'):
         name = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
+        if name.startswith('__main__.'):   # rostest nodes: name the result file instead
+            name = '%s: %s' % (os.path.basename(path)[:-4], name[len('__main__.'):])
         if case.find('failure') is not None or case.find('error') is not None:
             failed += 1
             names.append(name)
