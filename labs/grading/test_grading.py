@@ -1,0 +1,187 @@
+"""Unit tests of the graders' pure logic (no roscore) and of the CLI's bad-input handling."""
+import os
+import subprocess
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from grading import lab1, lab2
+from grading.common import Criterion, GradeError, load_variants, parse_isu, reason
+from grading.report import format_report, write_junit
+from grading.workspace import build_error, find_packages
+
+GRADE = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), 'grade')
+
+
+def test_variant_tables_cover_every_digit():
+    v1, v2 = load_variants('lab1'), load_variants('lab2')
+    assert sorted(v1) == sorted(v2) == list(range(10))
+    assert [v1[d]['operation'] for d in range(10)] == list('+++***---/')
+    assert [v1[d]['compute'] for d in range(10)] == ['node3', 'node1', 'node2'] * 3 + ['node1']
+    assert v2[0]['points'] == v2[9]['points'] and len(v2[9]['points']) == 4
+
+
+def test_reference_tables_match_variants():
+    import importlib.util
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    spec = importlib.util.spec_from_file_location(
+        'motion', os.path.join(here, 'lab2/reference/my_best_controller/src/my_best_controller/motion.py'))
+    motion = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(motion)
+    v2 = load_variants('lab2')
+    assert {d: [tuple(p) for p in v2[d]['points']] for d in range(10)} == motion.POINTS
+
+
+def test_isu_and_roles():
+    assert parse_isu(' 123456 ') == '123456'
+    with pytest.raises(GradeError):
+        parse_isu('12a')
+    assert lab1.roles('123450') == ('node3', ('node1', 'node2'), '+')
+    assert lab1.roles('100009') == ('node1', ('node2', 'node3'), '/')
+    assert lab1.roles('100005') == ('node2', ('node1', 'node3'), '*')
+
+
+def test_match_results_uses_operand_order_and_window():
+    first = [(0.0, 8.0), (1.0, 6.0)]
+    second = [(0.5, 2.0)]
+    assert lab1.match_results([(1.2, 3.0)], first, second, '/') == (1, 0, None)
+    v, wrong, ex = lab1.match_results([(1.2, 1.0 / 3.0)], first, second, '/')
+    assert (v, wrong) == (1, 1) and ex[3] == 3.0
+    assert lab1.match_results([(0.1, 5.0)], [(0.2, 1.0)], second, '+') == (0, 0, None)   # operands unknown yet
+    assert lab1.match_results([(2.0, 3.0)], [(1.0, 7.0)], [(1.0, 2.0)], '/', int_result=True)[1] == 0
+
+
+def lab1_obs(result_values, comp_pubs=('/result_1234',)):
+    # ISU 1234: digit 4 -> node1 computes node2 * node3
+    t = [0.5 * i for i in range(12)]
+    return {'isu': '1234', 'scripts': ['node1.py', 'node2.py', 'node3.py'], 'not_executable': [],
+            'procs': {n: {'rc': None} for n in ('node1', 'node2', 'node3')},
+            'nodes': ['/node1', '/node2', '/node3'], 'start': 0.0, 'end': 6.0,
+            'pubs': {'/node1': list(comp_pubs), '/node2': ['/a'], '/node3': ['/b']},
+            'subs': {'/node1': ['/a', '/b']}, 'types': {'/result_1234': 'std_msgs/Float64'},
+            'msgs': {'/a': [(x, 2.0) for x in t], '/b': [(x, 5.0) for x in t],
+                     '/result_1234': [(x + 0.1, v) for x, v in zip(t, result_values)]}}
+
+
+def test_lab1_evaluate_pass_and_failures():
+    ok = lab1.evaluate(lab1_obs([10.0] * 12))
+    assert [c.passed for c in ok] == [True] * 4, [c.reason for c in ok]
+    wrong = lab1.evaluate(lab1_obs([7.0] * 12))
+    assert [c.passed for c in wrong] == [True, True, False, True]
+    assert 'node2 * node3 = 2 * 5 = 10' in wrong[2].reason['en']
+    private = lab1.evaluate(lab1_obs([10.0] * 12, comp_pubs=('/node1/result_1234',)))
+    assert private[1].passed is False or private[2].passed is False   # no messages recorded there
+    other_ns = lab1.evaluate(lab1_obs([10.0] * 12, comp_pubs=('/x/result_1234',)))
+    assert not other_ns[1].passed and 'does not publish' in other_ns[1].reason['en']
+    crash = lab1_obs([10.0] * 12)
+    crash['procs']['node3'] = {'rc': 1, 'last': 'NameError: x'}
+    assert 'node3.py exited with code 1: NameError: x' in lab1.evaluate(crash)[0].reason['en']
+    few = lab1_obs([10.0] * 2)
+    few['msgs']['/result_1234'] = few['msgs']['/result_1234'][:2]
+    assert not lab1.evaluate(few)[3].passed
+
+
+def path(points, t0=0.0, dt=0.1, step=0.05):
+    out, t = [], t0
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        n = max(1, int(((x1 - x0) ** 2 + (y1 - y0) ** 2) ** 0.5 / step))
+        for k in range(n):
+            out.append((t, x0 + (x1 - x0) * k / n, y0 + (y1 - y0) * k / n, 0.0))
+            t += dt
+    out.append((t, points[-1][0], points[-1][1], 0.0))
+    return out
+
+
+def test_path_geometry():
+    a = path([(5.5, 5.5), (4, 2), (2, 3)])
+    b = path([(5.5, 5.5), (4.2, 2.1), (2, 3)])
+    assert lab2.path_deviation(a, a) < 0.06
+    assert 0.15 < lab2.path_deviation(a, b) < 0.3
+    v = lab2.visits(a, [(4, 2), (7, 1)], 0.3)
+    assert v[(4, 2)][0] < 0.05 and v[(7, 1)][1] is None and v[(7, 1)][0] > 2
+    assert lab2.first_motion([(0, 1, 1, 0), (1, 1, 1, 0.2)]) == 1
+    assert lab2.wall_hits([(0, 0.0, 5, 0), (1, 5, 5, 0)]) == [(0, 0.0, 5, 0)]
+
+
+def lab2_obs(p2_shift=0.0):
+    isu, ns1, ns2 = '7772', '/ns1_7772', '/ns2_7772'          # points (2,3) (4,2)
+    p1 = [(0.0, 5.544, 5.544, 0.0)] + path([(5.544, 5.544), (4, 2), (2, 3)], t0=1.0)
+    p2 = [(0.0, 5.544, 5.544, 0.0)] + path([(5.544, 5.544), (4 + p2_shift, 2), (2, 3)], t0=2.0)
+    done = next(t for t, x, y, _ in p1 if abs(x - 2) < 0.3 and abs(y - 3) < 0.3) - p1[1][0]
+    n1, n2 = ns1 + '/c', ns2 + '/c'
+    return {'isu': isu, 'remaps': [], 'global_literals': [], 'end_reason': 'still', 'duration': 30.0,
+            'pose1': p1, 'pose2': p2, 'wall_msgs': [],
+            'results': {ns1 + '/result_7772': [(50.0, done + 0.3)]},
+            'nodes': [ns1 + '/sim', ns2 + '/sim', n1, n2],
+            'pubs': {ns1 + '/sim': [ns1 + '/turtle1/pose', '/rosout'], ns2 + '/sim': [ns2 + '/turtle1/pose'],
+                     n1: [ns1 + '/turtle1/cmd_vel', ns1 + '/result_7772'], n2: [ns2 + '/turtle1/cmd_vel']},
+            'subs': {n1: [ns1 + '/turtle1/pose'], n2: [ns2 + '/turtle1/pose', ns1 + '/turtle1/pose']},
+            'srvs': {ns1 + '/sim': [ns1 + '/spawn']}}
+
+
+def test_lab2_evaluate():
+    ok = lab2.evaluate(lab2_obs())
+    assert all(c.passed for c in ok), [c.reason['en'] for c in ok]
+    off = lab2.evaluate(lab2_obs(p2_shift=1.0))
+    assert not off[3].passed and 'paths differ' in off[3].reason['en']
+    g = lab2_obs()
+    g['pubs']['/ns1_7772/c'].append('/turtle1/cmd_vel')
+    assert 'global name: topic /turtle1/cmd_vel' in lab2.evaluate(g)[4].reason['en']
+    late = lab2_obs()
+    late['results']['/ns1_7772/result_7772'] = [(50.0, 99.0)]
+    assert 'measured' in lab2.evaluate(late)[2].reason['en'] and not lab2.evaluate(late)[2].passed
+    noluanch = {'isu': '7772', 'launch_error': 'launch/lab2_setup.launch not found in package my_best_controller',
+                'end_reason': 'launch_exited'}
+    res = lab2.evaluate(noluanch)
+    assert not any(c.passed for c in res) and 'not found' in res[0].reason['en']
+
+
+def test_lab2_static_checks(tmp_path):
+    pkg = tmp_path / 'p'
+    (pkg / 'launch').mkdir(parents=True)
+    (pkg / 'scripts').mkdir()
+    (pkg / 'launch' / 'lab2_setup.launch').write_text(
+        '<launch><arg name="isu" default="1"/><group ns="a"><node pkg="x" type="y" name="n" args="in:=out _p:=1">'
+        '<remap from="a" to="b"/></node></group></launch>')
+    (pkg / 'scripts' / 'c.py').write_text('"""/doc/string"""\nimport rospy\nrospy.Subscriber("/turtle1/pose", None)\n'
+                                          'rospy.Publisher("cmd_vel", None)\nopen("/tmp/x")\n')
+    assert lab2.declares_isu(lab2.find_launch(str(pkg)))
+    r = lab2.remaps(str(pkg))
+    assert len(r) == 2 and 'from="a" to="b"' in r[0] and 'in:=out' in r[1]
+    assert lab2.global_literals(str(pkg)) == ['scripts/c.py:3 "/turtle1/pose"']
+
+
+def test_find_packages_and_build_error(tmp_path):
+    for name, d in (('a_pkg', 'x/a'), ('b_pkg', 'y/b'), ('c_pkg', 'build/c')):
+        (tmp_path / d).mkdir(parents=True)
+        (tmp_path / d / 'package.xml').write_text('<package><name>%s</name></package>' % name)
+    assert sorted(find_packages(str(tmp_path))) == ['a_pkg', 'b_pkg']
+    log = 'x\nCMake Warning at foo\nCould not find a package configuration file provided by "foo_msgs" with\n'
+    assert build_error(log) == 'missing dependency: find_package(foo_msgs) failed (no such package)'
+    log = 'CMake Error at CMakeLists.txt:5:\n  Parse error.  Function missing ending ")".\n'
+    assert build_error(log).startswith('CMake Error at CMakeLists.txt:5: Parse error')
+
+
+def test_report_and_junit(tmp_path):
+    crits = [Criterion('1', 'а', 'first', True, reason('ок', 'fine')),
+             Criterion('2', 'б', 'second thing', False, reason('плохо', 'bad'))]
+    text = format_report('lab1', '123', crits)
+    assert '\u2714 1. а / first' in text and '\u2718 2. б / second thing' in text and '1/2 criteria passed: FAIL' in text
+    out = tmp_path / 'j.xml'
+    write_junit(str(out), 'lab1', '123', crits)
+    cases = list(ET.parse(out).getroot().iter('testcase'))
+    assert [c.get('name') for c in cases] == ['1_first', '2_second_thing']
+    assert cases[1].find('failure').get('message') == 'bad' and cases[0].find('failure') is None
+
+
+@pytest.mark.parametrize('args,words', [
+    (['lab7', '--isu', '1'], "unknown lab 'lab7'"),
+    (['lab1', '--isu', '12x'], 'ISU id must be digits'),
+    (['lab1', '--isu', '1', '--repo', '/nonexistent/repo'], 'repository folder /nonexistent/repo does not exist'),
+    (['lab1', '--isu', '1', '--timeout', '-5'], '--timeout must be positive'),
+])
+def test_cli_bad_input_one_line(args, words, tmp_path):
+    p = subprocess.run([GRADE] + args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                       timeout=60, cwd=str(tmp_path))
+    assert p.returncode == 2
+    assert p.stderr.strip().count('\n') == 0 and words in p.stderr and 'Traceback' not in p.stderr
