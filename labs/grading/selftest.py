@@ -10,11 +10,11 @@ from grading.common import LABS_DIR
 GRADE = os.path.join(LABS_DIR, 'grade')
 
 
-def make_repo(root, lab, edits=(), add=None, rename=None):
-    """Copy labs/<lab>/reference into root/repo and apply edits [(relpath, old, new)];
+def make_repo(root, lab, edits=(), add=None, source='reference'):
+    """Copy labs/<lab>/<source> into root/repo and apply edits [(relpath, old, new)];
     add = {relpath: text}; returns the repo path."""
     repo = os.path.join(root, 'repo')
-    shutil.copytree(os.path.join(LABS_DIR, lab, 'reference'), repo)
+    shutil.copytree(os.path.join(LABS_DIR, lab, source), repo)
     pkg = os.path.join(repo, os.listdir(repo)[0])
     for rel, old, new in edits:
         p = os.path.join(pkg, rel)

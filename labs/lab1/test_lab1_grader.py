@@ -15,6 +15,7 @@ CASES = {
     'node_crashes': ('123456', {'edits': [('scripts/node2.py', 'from my_robot_controller', 'raise RuntimeError("boom")\nfrom my_robot_controller')]}),
     'cmake_syntax': ('123456', {'edits': [('CMakeLists.txt', 'catkin_package()', 'catkin_package(')]}),
     'missing_dependency': ('123456', {'edits': [('CMakeLists.txt', 'rospy std_msgs)', 'rospy std_msgs no_such_pkg_xyz)')]}),
+    'starter': ('123456', {'source': 'starter'}),
     'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<', '<name>my_robot_controler<')]}),
 }
 
@@ -79,6 +80,13 @@ def test_wrong_package_name(runs):
     assert rc == 1 and failed(crits) == ['0', '1', '2', '3', '4'], out
     assert 'package my_robot_controller not found in' in crits['0'][1]
     assert '(found: my_robot_controler)' in crits['0'][1]
+
+
+def test_starter_is_not_a_solution(runs):
+    rc, out, crits = crit(runs, 'starter')
+    assert rc == 1 and crits['0'][0], out
+    assert 'extra node scripts in the package (exactly three wanted): node4.py, node5.py' in crits['1'][1]
+    assert 'does not publish /result_123456' in crits['2'][1]
 
 
 @pytest.mark.full

@@ -71,3 +71,11 @@ def test_reference_all_variants(tmp_path):
     res = run_cases('lab2', cases, str(tmp_path), workers=2)
     bad = {n: r[1][-2000:] for n, r in res.items() if r[0] != 0}
     assert not bad, bad
+
+
+@pytest.mark.full
+def test_starter_is_not_a_solution(tmp_path):
+    res = run_cases('lab2', {'starter': ('123456', {'source': 'starter'})}, str(tmp_path))
+    rc, out, crits = res['starter']
+    assert rc == 1 and crits['0'][0] and crits['1'][0], out
+    assert not crits['2'][0] and 'turtle 1 never moved' in crits['2'][1]
