@@ -332,7 +332,7 @@ def evaluate(obs):
     elif not obs.get('nodes'):
         c['5'].set(False, reason('узлы не запустились', 'no node came up'))
     else:
-        c['5'].set(True, reason('%d узлов, все имена внутри %s, %s' % (len(obs['nodes']), ns1, ns2),
+        c['5'].set(True, reason('узлов: %d, все имена внутри %s, %s' % (len(obs['nodes']), ns1, ns2),
                                 '%d nodes, every name under %s, %s' % (len(obs['nodes']), ns1, ns2)))
 
     # 6. time limit and walls
