@@ -98,7 +98,7 @@ def test_rosmsg_show_custom_messages(workspace):
     pos = S.sh(['rosmsg', 'show', PKG + '/Position2d'], env).split('\n')
     assert [l for l in pos if l] == ['float32 x', 'float32 y']
     assert PKG + '/Position2d' in S.sh(['rosmsg', 'package', PKG], env).split()
-    # a package that does not exist: one clear error, non-zero exit
+    # a message type that does not exist: an error, non-zero exit, no traceback
     rc, out, err = S.sh_rc(['rosmsg', 'show', PKG + '/NoSuchMsg'], env)
     assert rc != 0 and 'Traceback' not in err
 
