@@ -9,20 +9,34 @@ class RosCore:
     """Start `roscore -p PORT`; `env` is os.environ pointed at it (ROS_MASTER_URI, logs)."""
 
     def __init__(self, port=None, log_dir=None):
-        self.port = port or free_port()
-        self.uri = 'http://127.0.0.1:%d' % self.port
         self.log_dir = log_dir or tempfile.mkdtemp(prefix='roscore-')
         os.makedirs(self.log_dir, exist_ok=True)
         self.env = dict(os.environ)
-        self.env.update(ROS_MASTER_URI=self.uri, ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir)
+        self.env.update(ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir)
         self.env.pop('ROS_HOSTNAME', None)
+        self._use_port(port or free_port())
         self.proc = None
 
-    def start(self, timeout=30.0):
-        self.proc = Proc(['roscore', '-p', str(self.port)], env=self.env,
-                         log=os.path.join(self.log_dir, 'roscore.out'))
-        wait_for(self._up, timeout, 0.1, 'roscore on port %d' % self.port)
+    def start(self, timeout=30.0, attempts=3):
+        """Start and wait until the master and /rosout answer. A port taken by another process
+        between choosing and binding it (tests run concurrently) is retried on a new port."""
+        for attempt in range(attempts):
+            self.proc = Proc(['roscore', '-p', str(self.port)], env=self.env,
+                             log=os.path.join(self.log_dir, 'roscore.out'))
+            try:
+                wait_for(self._up, timeout, 0.1, 'roscore on port %d' % self.port)
+                return self
+            except RuntimeError:
+                self.proc.stop()
+                if attempt == attempts - 1:
+                    raise
+                self._use_port(free_port())
         return self
+
+    def _use_port(self, port):
+        self.port = port
+        self.uri = 'http://127.0.0.1:%d' % port
+        self.env['ROS_MASTER_URI'] = self.uri
 
     def _up(self):
         if not self.proc.alive():
@@ -30,7 +44,9 @@ class RosCore:
         import rosgraph
         try:
             master = rosgraph.Master('/course_testing', master_uri=self.uri)
-            master.getPid()
+            # the master answering must be ours (same process group), not another test's
+            if os.getpgid(master.getPid()) != self.proc.pid:
+                return False
             # /rosout must be up too, or the first nodes lose their log messages
             return '/rosout' in [n for n in _nodes(master)]
         except Exception:
