@@ -44,8 +44,8 @@ class RosCore:
         import rosgraph
         try:
             master = rosgraph.Master('/course_testing', master_uri=self.uri)
-            # the master answering must be ours (same process group), not another test's
-            if os.getpgid(master.getPid()) != self.proc.pid:
+            # the master answering must be ours (our roscore's child), not another test's
+            if not _descends_from(master.getPid(), self.proc.pid):
                 return False
             # /rosout must be up too, or the first nodes lose their log messages
             return '/rosout' in [n for n in _nodes(master)]
@@ -70,3 +70,18 @@ def _nodes(master):
     for _, nodes in pubs + subs + srvs:
         names.update(nodes)
     return names
+
+
+def _descends_from(pid, ancestor):
+    """True when process `pid` is `ancestor` or one of its descendants (walks /proc ppids)."""
+    for _ in range(64):
+        if pid == ancestor:
+            return True
+        if pid <= 1:
+            return False
+        try:
+            with open('/proc/%d/stat' % pid) as f:
+                pid = int(f.read().rsplit(')', 1)[1].split()[1])
+        except (OSError, ValueError, IndexError):
+            return False
+    return False
