@@ -77,5 +77,6 @@ def test_reference_all_variants(tmp_path):
 def test_starter_is_not_a_solution(tmp_path):
     res = run_cases('lab2', {'starter': ('123456', {'source': 'starter'})}, str(tmp_path))
     rc, out, crits = res['starter']
-    assert rc == 1 and crits['0'][0] and crits['1'][0], out
+    assert rc == 1 and crits['0'][0], out
+    assert not crits['1'][0] and 'nobody publishes /ns2_123456/turtle1/pose' in crits['1'][1]
     assert not crits['2'][0] and 'turtle 1 never moved' in crits['2'][1]
