@@ -5,6 +5,7 @@ import os
 import signal
 import sys
 import threading
+import time
 
 import rospy
 
@@ -23,11 +24,15 @@ def display_reachable():
     x11.XOpenDisplay.restype = ctypes.c_void_p
     x11.XOpenDisplay.argtypes = [ctypes.c_char_p]
     x11.XCloseDisplay.argtypes = [ctypes.c_void_p]
-    handle = x11.XOpenDisplay(display.encode())
-    if not handle:
-        return False
-    x11.XCloseDisplay(handle)
-    return True
+    deadline = time.monotonic() + 2.0      # an X server that is just starting: retry briefly
+    while True:
+        handle = x11.XOpenDisplay(display.encode())
+        if handle:
+            x11.XCloseDisplay(handle)
+            return True
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.1)
 
 
 def main(argv=None):
