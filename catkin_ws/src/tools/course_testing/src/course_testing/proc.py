@@ -28,7 +28,7 @@ def wait_for(predicate, timeout, interval=0.05, what='condition'):
 class Proc:
     """A child process in its own process group; output goes to a log file or a pipe."""
 
-    def __init__(self, cmd, env=None, cwd=None, log=None, stdin=None, stdout=None):
+    def __init__(self, cmd, env=None, cwd=None, log=None, stdin=None, stdout=None, pass_fds=()):
         self.cmd = cmd
         self.log_path = log
         self._log = open(log, 'wb') if log else None
@@ -36,7 +36,7 @@ class Proc:
         self.popen = subprocess.Popen(
             cmd, env=env, cwd=cwd, stdin=stdin if stdin is not None else subprocess.DEVNULL,
             stdout=out, stderr=subprocess.STDOUT if out is not subprocess.DEVNULL else out,
-            start_new_session=True)
+            start_new_session=True, pass_fds=pass_fds)
         self.pid = self.popen.pid
 
     def alive(self):

@@ -1,19 +1,14 @@
 """A private Xvfb display and root-window screenshots (imagemagick `import`)."""
 import os
+import select
 import subprocess
 
-from course_testing.proc import Proc, wait_for
-
-
-def _free_display(start=90):
-    for n in range(start, start + 200):
-        if not os.path.exists('/tmp/.X11-unix/X%d' % n) and not os.path.exists('/tmp/.X%d-lock' % n):
-            return n
-    raise RuntimeError('no free X display number between :%d and :%d' % (start, start + 200))
+from course_testing.proc import Proc
 
 
 class Xvfb:
-    """Start Xvfb on a free display; `env` is os.environ with DISPLAY set to it."""
+    """Start Xvfb on a display number the X server picks itself (-displayfd), so concurrent
+    test runs never race for the same number; `env` is os.environ with DISPLAY set."""
 
     def __init__(self, width=1024, height=768, depth=24):
         self.size = (width, height, depth)
@@ -22,23 +17,28 @@ class Xvfb:
         self.env = None
 
     def start(self, timeout=15.0):
-        last = None
-        for _ in range(5):  # another process may grab the same number: retry
-            n = _free_display()
-            self.display = ':%d' % n
-            self.proc = Proc(['Xvfb', self.display, '-screen', '0', '%dx%dx%d' % self.size,
-                              '-nolisten', 'tcp'])
-            try:
-                wait_for(lambda: not self.proc.alive() or os.path.exists('/tmp/.X11-unix/X%d' % n),
-                         timeout, 0.05, 'Xvfb %s' % self.display)
-            except TimeoutError as e:
-                last = e
-            if self.proc.alive():
-                self.env = dict(os.environ, DISPLAY=self.display)
-                self.env.pop('QT_QPA_PLATFORM', None)
-                return self
-            self.proc.stop()
-        raise RuntimeError('could not start Xvfb: %s' % last)
+        rfd, wfd = os.pipe()
+        try:
+            self.proc = Proc(['Xvfb', '-displayfd', str(wfd), '-screen', '0', '%dx%dx%d' % self.size,
+                              '-nolisten', 'tcp'], pass_fds=(wfd,))
+            os.close(wfd)
+            wfd = None
+            number = b''
+            while not number.endswith(b'\n'):
+                ready, _, _ = select.select([rfd], [], [], timeout)
+                chunk = os.read(rfd, 16) if ready else b''
+                if not chunk:
+                    self.stop()
+                    raise RuntimeError('Xvfb did not report a display within %.0f s' % timeout)
+                number += chunk
+        finally:
+            os.close(rfd)
+            if wfd is not None:
+                os.close(wfd)
+        self.display = ':%d' % int(number)
+        self.env = dict(os.environ, DISPLAY=self.display)
+        self.env.pop('QT_QPA_PLATFORM', None)
+        return self
 
     def stop(self):
         if self.proc:
