@@ -123,7 +123,7 @@ def test_window_background_trail_sprite_and_clear(roscore, xvfb, tmp_path):
 
 def test_window_title(roscore, xvfb, tmp_path):
     if not shutil.which('xwininfo'):
-        pytest.skip('xwininfo (x11-utils) is not installed')
+        pytest.fail('xwininfo (x11-utils, deps/debian.txt) is not installed')
     env = dict(roscore.env, DISPLAY=xvfb.display)
     env.pop('QT_QPA_PLATFORM', None)
     sim = Proc(['rosrun', 'turtlesim', 'turtlesim_node'], env=env, log=str(tmp_path / 'sim.log'))
