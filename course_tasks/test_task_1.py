@@ -35,27 +35,6 @@ def _load_script(path, name):
     return mod
 
 
-@pytest.fixture
-def roscore(tmp_path):
-    """A private roscore (the root conftest's fixture, with its log directory created first)."""
-    from course_testing import RosCore
-    log_dir = tmp_path / 'ros_log'
-    log_dir.mkdir(exist_ok=True)
-    for attempt in range(3):     # another test run may grab the free port first: retry
-        core = RosCore(log_dir=str(log_dir))
-        try:
-            core.start()
-            break
-        except RuntimeError:
-            core.stop()
-            if attempt == 2:
-                raise
-    try:
-        yield core
-    finally:
-        core.stop()
-
-
 # --------------------------------------------------------------------------- workspace
 
 

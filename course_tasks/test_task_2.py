@@ -26,27 +26,6 @@ FIELD = 11.088889
 CENTRE = FIELD / 2
 
 
-@pytest.fixture
-def roscore(tmp_path):
-    """A private roscore (the root conftest's fixture, with its log directory created first)."""
-    from course_testing import RosCore
-    log_dir = tmp_path / 'ros_log'
-    log_dir.mkdir(exist_ok=True)
-    for attempt in range(3):     # another test run may grab the free port first: retry
-        core = RosCore(log_dir=str(log_dir))
-        try:
-            core.start()
-            break
-        except RuntimeError:
-            core.stop()
-            if attempt == 2:
-                raise
-    try:
-        yield core
-    finally:
-        core.stop()
-
-
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     """Sections 3.1-3.4: create the package with catkin_create_pkg, fill it in, catkin build."""

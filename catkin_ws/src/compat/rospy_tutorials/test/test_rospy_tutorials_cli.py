@@ -8,12 +8,6 @@ from course_testing import Proc, wait_for
 
 
 
-@pytest.fixture(autouse=True)
-def _ros_log_dir(tmp_path):
-    # the shared `roscore` fixture logs into tmp_path/ros_log but does not create it
-    (tmp_path / 'ros_log').mkdir(exist_ok=True)
-
-
 MD5 = {
     ('rosmsg', 'rospy_tutorials/Floats'): '420cd38b6b071cd49f2970c3e2cee511',
     ('rosmsg', 'rospy_tutorials/HeaderString'): 'c99a9440709e4d4a9716d55b8270d5e7',

@@ -6,18 +6,11 @@ import sys
 import time
 
 import numpy as np
-import pytest
 from course_testing import Proc, screenshot, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BLUE = (0x1f, 0x77, 0xb4)     # first curve
 RED = (0xd6, 0x27, 0x28)      # second curve
-
-
-@pytest.fixture(autouse=True)
-def _ros_log_dir(tmp_path):
-    # the shared `roscore` fixture logs into tmp_path/ros_log but does not create it
-    (tmp_path / 'ros_log').mkdir(exist_ok=True)
 
 
 def _env(roscore, xvfb):

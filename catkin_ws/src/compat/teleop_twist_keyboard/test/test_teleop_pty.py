@@ -5,16 +5,9 @@ import re
 import threading
 import time
 
-import pytest
 from course_testing import Proc, wait_for
 
 TOPIC = '/teleop_test/cmd_vel'
-
-
-@pytest.fixture(autouse=True)
-def _ros_log_dir(tmp_path):
-    # the shared `roscore` fixture logs into tmp_path/ros_log but does not create it
-    (tmp_path / 'ros_log').mkdir(exist_ok=True)
 
 
 class Teleop:
