@@ -8,11 +8,11 @@ failed, when a run produced no result file, or when a run hit its time limit.
 import argparse
 import glob
 import os
-import signal
-import subprocess
 import sys
 import time
 import xml.etree.ElementTree as ET
+
+import course_testing   # catkin_ws/src/tools/course_testing (scripts/test.sh sources the workspace)
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(REPO, 'build', 'test-results')
@@ -20,28 +20,14 @@ ROSTEST_TIMEOUT = 900
 
 
 def run(cmd, timeout, env=None, log=None):
-    """Run cmd in its own process group; on timeout kill the group. Returns (rc, timed_out)."""
-    out = open(log, 'w') if log else None
-    p = subprocess.Popen(cmd, env=env, cwd=REPO, stdout=out, stderr=subprocess.STDOUT if out else None,
-                         start_new_session=True)
-    try:
-        return p.wait(timeout), False
-    except subprocess.TimeoutExpired:
-        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
-            try:
-                os.killpg(p.pid, sig)
-                p.wait(5)
-                break
-            except (subprocess.TimeoutExpired, ProcessLookupError):
-                continue
-        return -1, True
-    finally:
-        try:
-            os.killpg(p.pid, signal.SIGKILL)   # nothing of the run survives it
-        except (ProcessLookupError, PermissionError):
-            pass
-        if out:
-            out.close()
+    """Run one test command with its whole process tree stopped on timeout; then kill and name
+    whatever it left behind (a test must clean up its roscore, nodes and Xvfb)."""
+    rc, timed_out = course_testing.run(cmd, timeout, env=env, cwd=REPO, log=log)
+    leaked = course_testing.reap_orphans()
+    if leaked:
+        print('WARNING: %s left %d processes running (killed now): %s' % (
+            ' '.join(cmd[:3]), len(leaked), '; '.join(leaked[:5])), flush=True)
+    return (-1 if rc is None else rc), timed_out
 
 
 def count_junit(path):
@@ -89,6 +75,7 @@ def main():
     ap.add_argument('--no-pytest', action='store_true')
     args = ap.parse_args()
 
+    course_testing.become_subreaper()   # orphans of a test come back to us and are killed
     os.makedirs(RESULTS, exist_ok=True)
     for old in glob.glob(os.path.join(RESULTS, '**', '*.xml'), recursive=True):
         os.remove(old)

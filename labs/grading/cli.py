@@ -11,6 +11,8 @@ import sys
 import tempfile
 import time
 
+import course_testing
+
 from grading import lab1, lab2
 from grading.common import (LABS_DIR, Criterion, GradeError, parse_isu, read_report, reason)
 from grading.report import format_report, write_junit
@@ -103,6 +105,7 @@ def main(argv=None):
     ap.add_argument('--timeout', type=float, help='time limit of the checker run, s')
     ap.add_argument('--keep', action='store_true', help='keep the temporary work dir (logs)')
     args = ap.parse_args(argv)
+    course_testing.become_subreaper()   # nodes orphaned by a crashed launch come back to us
     try:
         if args.lab not in LAB_MODULES:
             raise GradeError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LAB_MODULES))))
@@ -121,6 +124,8 @@ def main(argv=None):
     except KeyboardInterrupt:
         print('labs/grade: interrupted', file=sys.stderr)
         return 130
+    finally:
+        course_testing.reap_orphans()   # nothing of the student's run outlives the grader
     print(format_report(args.lab, isu, crits))
     write_junit(junit, args.lab, isu, crits, time.monotonic() - t0)
     print('[grade] JUnit report: %s' % os.path.abspath(junit))

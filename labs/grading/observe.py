@@ -4,7 +4,6 @@ Each observer gathers a plain dict that grading.lab1 / grading.lab2 evaluate. Ti
 wall seconds (time.monotonic) so that a stalled node cannot stall the clock.
 """
 import os
-import signal
 import subprocess
 import threading
 import time
@@ -12,6 +11,7 @@ import time
 import rosgraph
 import roslib.message
 import rospy
+from course_testing import stop_tree
 
 IGNORED_NODES = ('/rosout',)
 
@@ -50,18 +50,7 @@ class Child:
         return self.p.poll()
 
     def stop(self):
-        for sig, t in ((signal.SIGINT, 8.0), (signal.SIGTERM, 3.0), (signal.SIGKILL, 3.0)):
-            if self.p.poll() is not None:
-                break
-            try:
-                os.killpg(self.p.pid, sig)
-                self.p.wait(t)
-            except (ProcessLookupError, subprocess.TimeoutExpired):
-                continue
-        try:
-            os.killpg(self.p.pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
+        stop_tree(self.p, grace=8.0)
         self._out.close()
 
 

@@ -2,9 +2,10 @@
 import os
 import re
 import shutil
-import signal
 import subprocess
 import xml.etree.ElementTree as ET
+
+import course_testing
 
 from grading.common import GradeError, LABS_DIR, reason
 
@@ -53,28 +54,9 @@ def locate(repo, name):
 
 
 def run_group(cmd, timeout, env=None, cwd=None, log=None):
-    """Run cmd in its own process group; kill the group on timeout. (rc, timed_out)."""
-    out = open(log, 'wb') if log else subprocess.DEVNULL
-    p = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=out, stderr=subprocess.STDOUT,
-                         stdin=subprocess.DEVNULL, start_new_session=True)
-    try:
-        return p.wait(timeout), False
-    except subprocess.TimeoutExpired:
-        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
-            try:
-                os.killpg(p.pid, sig)
-                p.wait(5)
-                break
-            except (subprocess.TimeoutExpired, ProcessLookupError):
-                continue
-        return None, True
-    finally:
-        try:
-            os.killpg(p.pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
-        if log:
-            out.close()
+    """Run cmd in its own process group, output to `log`; on timeout stop its whole process
+    tree (rostest's nodes live in sessions of their own). Returns (rc, timed_out)."""
+    return course_testing.run(cmd, timeout, env=env, cwd=cwd, log=log or os.devnull)
 
 
 def sourced_env(script, base=None, timeout=60):

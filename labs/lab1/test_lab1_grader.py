@@ -1,9 +1,19 @@
 """Lab 1 grader self-tests: the reference passes, seeded faults fail the right criterion."""
 import os
+import subprocess
 
 import pytest
 
 from grading.selftest import run_cases
+
+STUBBORN = '''    import signal, subprocess, time
+    subprocess.Popen(['setsid', 'sleep', '6001'])
+    main(2)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    while True:
+        time.sleep(1)
+'''
 
 CASES = {
     # name: (ISU, faults seeded into a copy of the reference)
@@ -16,6 +26,9 @@ CASES = {
     'cmake_syntax': ('123456', {'edits': [('CMakeLists.txt', 'catkin_package()', 'catkin_package(')]}),
     'missing_dependency': ('123456', {'edits': [('CMakeLists.txt', 'rospy std_msgs)', 'rospy std_msgs no_such_pkg_xyz)')]}),
     'starter': ('123456', {'source': 'starter'}),
+    # a node that ignores SIGINT/SIGTERM once rospy shut down and leaves a grandchild in a
+    # session of its own: the grade still ends and nothing of it survives
+    'stubborn_node': ('123456', {'edits': [('scripts/node2.py', '    main(2)\n', STUBBORN)]}),
     'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<', '<name>my_robot_controler<')]}),
 }
 
@@ -87,6 +100,13 @@ def test_starter_is_not_a_solution(runs):
     assert rc == 1 and crits['0'][0], out
     assert 'extra node scripts in the package (exactly three wanted): node4.py, node5.py' in crits['1'][1]
     assert 'does not publish /result_123456' in crits['2'][1]
+
+
+def test_stubborn_node_is_killed_with_its_tree(runs):
+    rc, out, crits = crit(runs, 'stubborn_node')
+    assert rc == 0, out     # it works while running; stopping it is the grader's job
+    left = subprocess.run(['pgrep', '-f', '^sleep 6001$'], capture_output=True, text=True).stdout.split()
+    assert not left, 'processes of the graded run survived the grader: %s' % left
 
 
 @pytest.mark.full

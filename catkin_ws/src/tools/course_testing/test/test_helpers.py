@@ -30,3 +30,26 @@ def test_proc_stop_kills_group(tmp_path):
     child = int((tmp_path / 'child').read_text())
     p.stop()
     wait_for(lambda: not os.path.exists('/proc/%d' % child), 5, what='child gone')
+
+
+def test_stop_kills_a_grandchild_in_another_session(tmp_path):
+    """roslaunch-style: the child starts a grandchild with setsid; stop() still kills it."""
+    pidfile = tmp_path / 'gc'
+    p = Proc(['bash', '-c', 'setsid sleep 300 & echo $! > %s; wait' % pidfile])
+    wait_for(lambda: pidfile.exists() and pidfile.read_text().strip(), 5)
+    gc = int(pidfile.read_text())
+    assert os.getpgid(gc) != p.pid
+    p.stop()
+    wait_for(lambda: not os.path.exists('/proc/%d' % gc) or
+             open('/proc/%d/stat' % gc).read().rsplit(')', 1)[1].split()[0] == 'Z', 5, what='grandchild gone')
+
+
+def test_run_times_out_and_kills_tree(tmp_path):
+    from course_testing.proc import run
+    pidfile = tmp_path / 'gc'
+    rc, timed_out = run(['bash', '-c', 'setsid sleep 300 & echo $! > %s; sleep 300' % pidfile], 1.0,
+                        log=str(tmp_path / 'log'))
+    assert rc is None and timed_out
+    gc = int(pidfile.read_text())
+    wait_for(lambda: not os.path.exists('/proc/%d' % gc) or
+             open('/proc/%d/stat' % gc).read().rsplit(')', 1)[1].split()[0] == 'Z', 5, what='grandchild gone')

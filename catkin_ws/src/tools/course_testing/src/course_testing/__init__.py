@@ -1,6 +1,8 @@
 """Helpers for tests and graders: processes, a private roscore, Xvfb and screenshots."""
-from course_testing.proc import Proc, start, free_port, wait_for
+from course_testing.proc import (Proc, start, free_port, wait_for, run, stop_tree, become_subreaper,
+                                   reap_orphans)
 from course_testing.roscore import RosCore
 from course_testing.xvfb import Xvfb, screenshot
 
-__all__ = ['Proc', 'start', 'free_port', 'wait_for', 'RosCore', 'Xvfb', 'screenshot']
+__all__ = ['Proc', 'start', 'free_port', 'wait_for', 'run', 'stop_tree', 'become_subreaper',
+           'reap_orphans', 'RosCore', 'Xvfb', 'screenshot']
