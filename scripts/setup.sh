@@ -43,7 +43,7 @@ if [ "$want" != "$have" ]; then
         if echo "$reqs" | grep -qv '=='; then die "deps/python.txt: every requirement must be pinned with =="; fi
         log "installing PyPI packages into .deps/python"
         /usr/bin/python3 -m pip install --disable-pip-version-check --no-warn-script-location \
-            --target "$PYDEPS" -r deps/python.txt
+            --no-deps --target "$PYDEPS" -r deps/python.txt
     fi
     echo "$want" > "$STAMP"
 else
