@@ -294,3 +294,176 @@ class Lab2Observer:
         obs['wall_msgs'] = list(self.walls)
         obs.update(self.graph.state())
         return obs
+
+
+def node_argv(master, node):
+    """The command line of a ROS node (from its PID over XML-RPC), or []."""
+    try:
+        import xmlrpc.client
+        uri = master.lookupNode(node)
+        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/lab3_checker')
+        with open('/proc/%d/cmdline' % pid, 'rb') as f:
+            return [a.decode(errors='replace') for a in f.read().split(b'\0') if a]
+    except Exception:   # node gone or not answering: not counted
+        return []
+
+
+class Lab3Observer:
+    """Expand the model with xacro, check_urdf it, then roslaunch lab3_setup.launch and watch
+    /robot_description, the nodes (by their executables), the RViz config and /tf."""
+
+    def __init__(self, isu, pkg_dir, logdir, launch_limit=None):
+        from grading import lab3
+        self.lab3 = lab3
+        self.isu = isu
+        self.pkg_dir = pkg_dir
+        self.logdir = logdir
+        self.launch_limit = launch_limit or lab3.LAUNCH_LIMIT
+        self.frames = set()
+        self.lock = threading.Lock()
+
+    def _step(self, cmd, name):
+        """(rc or None on timeout, combined output) of a short command."""
+        log = os.path.join(self.logdir, name + '.log')
+        import course_testing
+        rc, timed_out = course_testing.run(cmd, self.lab3.STEP_TIMEOUT, cwd=self.logdir, log=log)
+        with open(log, errors='replace') as f:
+            return (None if timed_out else rc), f.read()
+
+    def static(self, obs):
+        lab3 = self.lab3
+        path = lab3.find_file(self.pkg_dir, lab3.MODEL)
+        obs['model_found'] = bool(path)
+        if not path:
+            return
+        args = lab3.variant_args(lab3.xacro_args(path), self.isu)
+        obs['xacro_args'] = args
+        out_urdf = os.path.join(self.logdir, 'model.urdf')
+        rc, text = self._step(['bash', '-c', 'rosrun xacro xacro "$@" > "%s"' % out_urdf, 'xacro', path] + args, 'xacro')
+        if rc is None:
+            obs['xacro_error'] = 'did not finish within %d s' % lab3.STEP_TIMEOUT
+            return
+        if rc != 0:
+            obs['xacro_error'] = error_line(text, ('error', 'Error', 'XacroException', 'Undefined', 'not well-formed', 'Exception'))
+            return
+        with open(out_urdf, errors='replace') as f:
+            obs['urdf'] = f.read()
+        rc, text = self._step(['check_urdf', out_urdf], 'check_urdf')
+        if rc is None:
+            obs['check_urdf_error'] = 'did not finish within %d s' % lab3.STEP_TIMEOUT
+        elif rc != 0:
+            obs['check_urdf_error'] = error_line(text, ('Error', 'error', 'ERROR'))
+
+    def _tf(self, msg):
+        with self.lock:
+            for t in msg.transforms:
+                self.frames.add(t.child_frame_id.lstrip('/'))
+                self.frames.add(t.header.frame_id.lstrip('/'))
+
+    def run(self):
+        obs = {'isu': self.isu}
+        self.static(obs)
+        obs['launch'] = self.run_launch(obs)
+        return obs
+
+    def run_launch(self, obs):
+        lab3 = self.lab3
+        from tf2_msgs.msg import TFMessage
+        launch = lab3.find_launch(self.pkg_dir)
+        if launch is None:
+            return {'error': 'launch/%s not found in package %s' % (lab3.LAUNCH, lab3.PACKAGE)}
+        want_links = None
+        if obs.get('urdf'):
+            try:
+                want_links = set(lab3.parse_urdf(obs['urdf'])['links'])
+            except lab3.ModelError:
+                want_links = None
+        rospy.Subscriber('/tf', TFMessage, self._tf, queue_size=200)
+        rospy.Subscriber('/tf_static', TFMessage, self._tf, queue_size=50)
+        master = rosgraph.Master(rospy.get_name())
+        env = dict(os.environ)
+        xvfb = None
+        if not env.get('DISPLAY'):
+            from course_testing import Xvfb
+            xvfb = Xvfb(1600, 1000)
+            xvfb.start()
+            env['DISPLAY'] = xvfb.display
+        env.pop('QT_QPA_PLATFORM', None)
+        cmd = ['roslaunch', lab3.PACKAGE, lab3.LAUNCH] + lab3.variant_args(lab3.launch_args(launch), self.isu)
+        log = os.path.join(self.logdir, 'roslaunch.log')
+        start = time.monotonic()
+        child = Child(cmd, log, env=env)
+        res = {'kinds': {}, 'rviz': {}}
+        argv_seen = {}
+        try:
+            while not rospy.is_shutdown():
+                now = time.monotonic()
+                try:
+                    if res.get('robot_description') is None and master.hasParam('/robot_description'):
+                        v = master.getParam('/robot_description')
+                        res['robot_description'] = v if isinstance(v, str) else str(v)
+                    nodes = set()
+                    for table in master.getSystemState():
+                        for _, ns in table:
+                            nodes.update(ns)
+                except Exception:   # master busy: next round
+                    nodes = set()
+                for n in sorted(nodes):
+                    if n in argv_seen or n == rospy.get_name() or n == '/rosout':
+                        continue
+                    argv = node_argv(master, n)
+                    if argv:
+                        argv_seen[n] = argv
+                        kind = lab3.node_kind(argv)
+                        if kind:
+                            res['kinds'].setdefault(kind, []).append(n)
+                            if kind == 'rviz':
+                                res['rviz']['argv'] = argv
+                with self.lock:
+                    frames = set(self.frames)
+                ready = (res.get('robot_description') is not None and len(res['kinds']) == 3
+                         and want_links is not None and want_links <= frames)
+                if ready:
+                    res['ready_after'] = now - start
+                    time.sleep(1.0)    # let RViz settle: it must still be running afterwards
+                    break
+                if child.rc() is not None:
+                    res['error'] = 'roslaunch exited: %s' % launch_failure(log)
+                    break
+                if now - start > self.launch_limit:
+                    break
+                time.sleep(0.3)
+            if 'rviz' in res['kinds'] and not node_argv(master, res['kinds']['rviz'][0]):
+                res['kinds'].pop('rviz')
+                res['error'] = res.get('error') or 'rviz exited: %s' % launch_failure(log)
+        finally:
+            child.stop()
+            if xvfb is not None:
+                xvfb.stop()
+        with self.lock:
+            res['tf_frames'] = sorted(self.frames)
+        argv = res['rviz'].get('argv')
+        if argv:
+            cfg = lab3.rviz_config_arg(argv)
+            res['rviz']['config'] = cfg
+            if cfg:
+                try:
+                    with open(cfg, errors='replace') as f:
+                        classes, frame = lab3.rviz_displays(f.read())
+                    res['rviz'].update(classes=classes, fixed_frame=frame)
+                except OSError as e:
+                    res['rviz']['config_error'] = 'cannot read: %s' % e.strerror
+                except lab3.ModelError as e:
+                    res['rviz']['config_error'] = str(e)
+        res['nodes'] = {n: ' '.join(a)[:200] for n, a in argv_seen.items()}
+        return res
+
+
+def error_line(text, keys):
+    """The first line of a tool's output that carries one of `keys`, else its last line."""
+    lines = [l.strip() for l in text.splitlines() if l.strip()]
+    for k in keys:
+        for l in lines:
+            if k in l:
+                return l[:250]
+    return (lines[-1] if lines else 'failed without output')[:250]
