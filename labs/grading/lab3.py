@@ -30,6 +30,7 @@ DEFAULT_TIMEOUT = 240.0
 SIZE_TOL = 5.0          # mm, per dimension of the body box
 LAUNCH_LIMIT = 60.0     # s from roslaunch until every piece of criterion 7 is seen
 STEP_TIMEOUT = 60.0     # s, xacro and check_urdf each
+RVIZ_SETTLE = 3.0       # s RViz must keep running after everything was seen
 MOVABLE = ('revolute', 'continuous', 'prismatic', 'floating', 'planar')
 CODE = {'revolute': 'R', 'prismatic': 'P', 'continuous': 'C', 'fixed': 'F',
         'floating': 'FL', 'planar': 'PL'}
@@ -489,6 +490,9 @@ def evaluate_launch(obs, model, crit):
             problems.append(('не запущен узел %s' % k, 'no %s node is running' % k))
     rv = la.get('rviz') or {}
     if kinds.get('rviz'):
+        if rv.get('not_up'):
+            problems.append(('RViz не открыл окно за %.0f с (не подписался на /tf)' % LAUNCH_LIMIT,
+                             'RViz did not open its window within %.0f s (never subscribed to /tf)' % LAUNCH_LIMIT))
         if not rv.get('config'):
             problems.append(('rviz запущен без конфигурации (-d файл.rviz)', 'rviz runs without a config (-d file.rviz)'))
         elif rv.get('config_error'):

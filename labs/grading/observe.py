@@ -395,6 +395,7 @@ class Lab3Observer:
         child = Child(cmd, log, env=env)
         res = {'kinds': {}, 'rviz': {}}
         argv_seen = {}
+        rviz_up = False
         try:
             while not rospy.is_shutdown():
                 now = time.monotonic()
@@ -402,12 +403,14 @@ class Lab3Observer:
                     if res.get('robot_description') is None and master.hasParam('/robot_description'):
                         v = master.getParam('/robot_description')
                         res['robot_description'] = v if isinstance(v, str) else str(v)
-                    nodes = set()
-                    for table in master.getSystemState():
-                        for _, ns in table:
+                    nodes, tf_subs = set(), set()
+                    for k, table in enumerate(master.getSystemState()):
+                        for topic, ns in table:
                             nodes.update(ns)
+                            if k == 1 and topic == '/tf':
+                                tf_subs.update(ns)
                 except Exception:   # master busy: next round
-                    nodes = set()
+                    nodes, tf_subs = set(), set()
                 for n in sorted(nodes):
                     if n in argv_seen or n == rospy.get_name() or n == '/rosout':
                         continue
@@ -421,21 +424,25 @@ class Lab3Observer:
                                 res['rviz']['argv'] = argv
                 with self.lock:
                     frames = set(self.frames)
+                # RViz is up once its display manager listens to /tf (the render window exists)
+                rviz_up = any(n in tf_subs for n in res['kinds'].get('rviz', []))
                 ready = (res.get('robot_description') is not None and len(res['kinds']) == 3
-                         and want_links is not None and want_links <= frames)
+                         and rviz_up and want_links is not None and want_links <= frames)
                 if ready:
                     res['ready_after'] = now - start
-                    time.sleep(1.0)    # let RViz settle: it must still be running afterwards
+                    time.sleep(lab3.RVIZ_SETTLE)   # RViz must still be running afterwards
                     break
                 if child.rc() is not None:
-                    res['error'] = 'roslaunch exited: %s' % launch_failure(log)
+                    res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log))
                     break
                 if now - start > self.launch_limit:
                     break
                 time.sleep(0.3)
             if 'rviz' in res['kinds'] and not node_argv(master, res['kinds']['rviz'][0]):
                 res['kinds'].pop('rviz')
-                res['error'] = res.get('error') or 'rviz exited: %s' % launch_failure(log)
+                res['error'] = res.get('error') or 'rviz exited: %s' % plain(launch_failure(log))
+            elif 'rviz' in res['kinds'] and not res.get('ready_after') and not rviz_up:
+                res['rviz']['not_up'] = True
         finally:
             child.stop()
             if xvfb is not None:
@@ -459,9 +466,16 @@ class Lab3Observer:
         return res
 
 
+def plain(text):
+    """Text without terminal colour codes and control characters (they break JUnit XML)."""
+    import re
+    text = re.sub(r'\x1b\[[0-9;]*[A-Za-z]|\x1b\][^\x07]*\x07', '', text)
+    return ''.join(ch for ch in text if ch >= ' ' or ch == '\t')
+
+
 def error_line(text, keys):
     """The first line of a tool's output that carries one of `keys`, else its last line."""
-    lines = [l.strip() for l in text.splitlines() if l.strip()]
+    lines = [plain(l).strip() for l in text.splitlines() if plain(l).strip()]
     for k in keys:
         for l in lines:
             if k in l:
