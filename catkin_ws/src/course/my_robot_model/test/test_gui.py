@@ -34,9 +34,6 @@ def test_robot_launch_shows_orange_body_and_black_wheels(roscore, screen, tmp_pa
     assert box[2] - box[0] > 800   # the 3D view is the main part of the window
 
 
-@pytest.mark.xfail(strict=True, reason='Debian 12 joint_state_publisher_gui 1.15 dies at start with PyQt5 '
-                   '(slider.setValue(RANGE/2): float passed to int), so the wheels get no TF; '
-                   'strict: this test fails once that is fixed and the mark must go')
 def test_robot_launch_with_gui_sliders(roscore, screen, tmp_path):
     """gui:=true starts joint_state_publisher_gui instead; the model is still drawn."""
     rviz_launch_shows(gui_env(roscore, screen), screen.display, tmp_path,
