@@ -344,7 +344,9 @@ class Lab3Observer:
             obs['xacro_error'] = 'did not finish within %d s' % lab3.STEP_TIMEOUT
             return
         if rc != 0:
-            obs['xacro_error'] = error_line(text, ('error', 'Error', 'XacroException', 'Undefined', 'not well-formed', 'Exception'))
+            line = error_line(text, ('error', 'Error', 'XacroException', 'Undefined', 'not well-formed', 'Exception'))
+            line = line[len('xacro: '):] if line.startswith('xacro: ') else line
+            obs['xacro_error'] = line.replace(self.pkg_dir.rstrip('/') + '/', '')
             return
         with open(out_urdf, errors='replace') as f:
             obs['urdf'] = f.read()
@@ -433,7 +435,7 @@ class Lab3Observer:
                     time.sleep(lab3.RVIZ_SETTLE)   # RViz must still be running afterwards
                     break
                 if child.rc() is not None:
-                    res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log))
+                    res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log)).replace(self.pkg_dir.rstrip('/') + '/', '')
                     break
                 if now - start > self.launch_limit:
                     break
