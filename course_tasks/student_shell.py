@@ -105,8 +105,9 @@ def echo_once(topic, env, timeout=30.0):
     return yaml.safe_load(out.split('\n---')[0])
 
 
-def wait_topic(topic, env, timeout=90.0):
-    """Wait until `topic` delivers a message; return it as a dict."""
+def wait_topic(topic, env, timeout=90.0, proc=None):
+    """Wait until `topic` delivers a message; return it as a dict. On failure the message
+    includes the end of `proc`'s log (the roslaunch that should publish it)."""
     deadline = time.monotonic() + timeout
     last = None
     while time.monotonic() < deadline:
@@ -115,7 +116,8 @@ def wait_topic(topic, env, timeout=90.0):
         except AssertionError as e:
             last = e
             time.sleep(0.3)
-    raise AssertionError('no message on %s within %.0f s (%s)' % (topic, timeout, last))
+    log = ('\n--- log of %s:\n%s' % (' '.join(proc.cmd), proc.output()[-3000:])) if proc else ''
+    raise AssertionError('no message on %s within %.0f s (%s)%s' % (topic, timeout, last, log))
 
 
 def wait_output(proc, text, timeout=60.0):

@@ -157,7 +157,7 @@ def turtlesim(roscore, xvfb, tmp_path):
     env = S.with_master(S.shell_env(), roscore, xvfb)
     sim = S.launch(['rosrun', 'turtlesim', 'turtlesim_node'], env, tmp_path / 'turtlesim.log')
     try:
-        S.wait_topic('/turtle1/pose', env)
+        S.wait_topic('/turtle1/pose', env, proc=sim)
         yield env, sim
     finally:
         sim.stop()

@@ -152,7 +152,7 @@ def test_super_node_with_rosrun(workspace, roscore, xvfb, tmp_path):
     try:
         S.wait_output(node, 'Node started...')
         S.wait_output(node, 'Super node sending new msg')
-        p0 = S.wait_topic('/turtle1/pose', env)
+        p0 = S.wait_topic('/turtle1/pose', env, proc=sim)
         wait_for(lambda: S.echo_once('/turtle1/pose', env)['x'] > 9.0, 20, 0.2,
                  'the turtle to reach x > 9 (2 m/s from the centre)')
         p1 = S.echo_once('/turtle1/pose', env)
@@ -169,7 +169,7 @@ def test_my_setup_launch(workspace, roscore, xvfb, tmp_path):
     env = S.with_master(workspace['env'], roscore, xvfb)
     lp = S.launch(['roslaunch', PKG, 'my_setup.launch'], env, tmp_path / 'launch.log')
     try:
-        S.wait_topic('/position2d', env)
+        S.wait_topic('/position2d', env, proc=lp)
         nodes = S.sh(['rosnode', 'list'], env).split()
         for n in ('/sim', '/my_super_robot_controller', '/position2d_node'):
             assert n in nodes, nodes
@@ -197,8 +197,8 @@ def test_two_controllers_in_namespaces(workspace, roscore, xvfb, tmp_path):
     env = S.with_master(workspace['env'], roscore, xvfb)
     lp = S.launch(['roslaunch', PKG, 'my_setup_ns.launch'], env, tmp_path / 'launch.log')
     try:
-        S.wait_topic('/ns1/position2d', env)
-        S.wait_topic('/ns2/position2d', env)
+        S.wait_topic('/ns1/position2d', env, proc=lp)
+        S.wait_topic('/ns2/position2d', env, proc=lp)
         nodes = S.sh(['rosnode', 'list'], env).split()
         for n in ('/ns1/sim', '/ns1/controller', '/ns2/sim', '/ns2/controller'):
             assert n in nodes, nodes
@@ -230,8 +230,8 @@ def test_mimic_launch(workspace, roscore, xvfb, tmp_path):
     lp = S.launch(['roslaunch', PKG, 'mimic.launch'], env, tmp_path / 'launch.log')
     drive = None
     try:
-        S.wait_topic('/turtlesim1/turtle1/pose', env)
-        S.wait_topic('/turtlesim2/turtle1/pose', env)
+        S.wait_topic('/turtlesim1/turtle1/pose', env, proc=lp)
+        S.wait_topic('/turtlesim2/turtle1/pose', env, proc=lp)
         nodes = S.sh(['rosnode', 'list'], env).split()
         for n in ('/turtlesim1/sim', '/turtlesim2/sim', '/mimic'):
             assert n in nodes, nodes

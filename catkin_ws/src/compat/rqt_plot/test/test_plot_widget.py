@@ -6,7 +6,6 @@ import pytest
 
 os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
 from PyQt5 import QtWidgets  # noqa: E402
-from geometry_msgs.msg import Point  # noqa: E402
 
 from rqt_plot.plot_widget import PlotWidget  # noqa: E402
 
