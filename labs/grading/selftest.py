@@ -58,3 +58,16 @@ def run_cases(lab, cases, root, workers=2):
         return name, run_grade(lab, isu, repo, d)
     with ThreadPoolExecutor(workers) as ex:
         return dict(ex.map(one, sorted(cases.items())))
+
+
+def crit(runs, name):
+    """(exit code, output, {id: (passed, reason)}) of the case `name`; fails when the grade
+    produced no report at all."""
+    rc, out, crits = runs[name]
+    assert crits, out
+    return rc, out, crits
+
+
+def failed(crits):
+    """Ids of the criteria that failed, sorted."""
+    return sorted(c for c, (p, _) in crits.items() if not p)

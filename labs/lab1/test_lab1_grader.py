@@ -3,7 +3,7 @@ import os
 
 import pytest
 
-from grading.selftest import run_cases
+from grading.selftest import crit, failed, run_cases
 
 STUBBORN = '''    import signal, subprocess, time
     subprocess.Popen(['setsid', 'sleep', '6001'])
@@ -37,21 +37,11 @@ def runs(tmp_path_factory):
     return run_cases('lab1', CASES, str(tmp_path_factory.mktemp('lab1')), workers=3)
 
 
-def crit(runs, name):
-    rc, out, crits = runs[name]
-    assert crits, out
-    return rc, out, crits
-
-
 @pytest.mark.parametrize('name', ['ref_minus_node3', 'ref_div_node1'])
 def test_reference_passes(runs, name):
     rc, out, crits = crit(runs, name)
     assert rc == 0, out
     assert sorted(crits) == ['0', '1', '2', '3', '4'] and all(p for p, _ in crits.values()), out
-
-
-def failed(crits):
-    return sorted(c for c, (p, _) in crits.items() if not p)
 
 
 def test_wrong_operation(runs):

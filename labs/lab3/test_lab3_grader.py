@@ -1,7 +1,7 @@
 """Lab 3 grader self-tests: the reference passes, seeded faults fail the right criterion."""
 import pytest
 
-from grading.selftest import run_cases
+from grading.selftest import crit, failed, run_cases
 
 MODEL = 'urdf/my_robots_super_model.xacro'
 LAUNCH = 'launch/lab3_setup.launch'
@@ -21,16 +21,6 @@ CASES = {
 @pytest.fixture(scope='module')
 def runs(tmp_path_factory):
     return run_cases('lab3', CASES, str(tmp_path_factory.mktemp('lab3')), workers=3)
-
-
-def crit(runs, name):
-    rc, out, crits = runs[name]
-    assert crits, out
-    return rc, out, crits
-
-
-def failed(crits):
-    return sorted(c for c, (p, _) in crits.items() if not p)
 
 
 @pytest.mark.parametrize('name', ['ref_v1', 'ref_v4'])
