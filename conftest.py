@@ -33,3 +33,15 @@ def xvfb():
         yield x
     finally:
         x.stop()
+
+
+@pytest.fixture
+def screen():
+    """A 1600x1000 Xvfb display of this test's own: room for RViz's main window."""
+    from course_testing import Xvfb
+    x = Xvfb(1600, 1000)
+    x.start()
+    try:
+        yield x
+    finally:
+        x.stop()

@@ -1,23 +1,10 @@
 """display.launch under Xvfb: RViz really draws the model in its material colours."""
 import os
 
-import pytest
-
-from course_testing import Xvfb
 from my_robot_model import model_check as mc
 from my_robot_model.gui_check import rviz_launch_shows
 
 COLOURS = {'blue base': (0.05, 0.35, 0.9, 1.0), 'black wheels': (0.0, 0.0, 0.0, 1.0)}
-
-
-@pytest.fixture
-def screen():
-    x = Xvfb(1600, 1000)
-    x.start()
-    try:
-        yield x
-    finally:
-        x.stop()
 
 
 def test_display_launch_shows_the_model(roscore, screen, tmp_path):

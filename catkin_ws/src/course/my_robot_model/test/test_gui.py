@@ -1,23 +1,12 @@
 """robot.launch and first_model.launch under Xvfb: RViz really draws the model's colours."""
 import pytest
 
-from course_testing import Xvfb
 from my_robot_model import model_check as mc
 from my_robot_model.gui_check import rviz_launch_shows
 
 ORANGE = (1.0, 108 / 255, 10 / 255, 1.0)
 BLUE = (0.0, 0.0, 0.8, 1.0)
 BLACK = (0.0, 0.0, 0.0, 1.0)
-
-
-@pytest.fixture
-def screen():
-    x = Xvfb(1600, 1000)
-    x.start()
-    try:
-        yield x
-    finally:
-        x.stop()
 
 
 def gui_env(roscore, screen):

@@ -1,23 +1,10 @@
 """display.launch under Xvfb: RViz really draws the model in its material colours."""
 import os
 
-import pytest
-
-from course_testing import Xvfb
 from my_robot_model import model_check as mc
 from my_robot_model.gui_check import rviz_launch_shows
 
 COLOURS = {'green decks': (0.1, 0.75, 0.2, 1.0), 'red front wheels': (0.85, 0.05, 0.05, 1.0), 'blue rear wheels': (0.05, 0.2, 0.85, 1.0)}
-
-
-@pytest.fixture
-def screen():
-    x = Xvfb(1600, 1000)
-    x.start()
-    try:
-        yield x
-    finally:
-        x.stop()
 
 
 def test_display_launch_shows_the_model(roscore, screen, tmp_path):
