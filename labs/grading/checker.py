@@ -15,7 +15,7 @@ from grading.common import write_report
 
 
 def run_checker(lab, module, observe):
-    """Run the checker node of `lab` ('lab1', 'lab2'): `module` is grading.labN (PACKAGE,
+    """Run the checker node of `lab` ('lab1', 'lab2', 'lab3'): `module` is grading.labN (PACKAGE,
     CRITERIA, evaluate); `observe(isu, pkg_dir, workdir)` returns the observation to evaluate."""
 
     class Check(unittest.TestCase):
