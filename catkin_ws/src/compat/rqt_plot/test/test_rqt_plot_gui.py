@@ -7,6 +7,7 @@ import time
 
 import numpy as np
 from course_testing import Proc, screenshot, wait_for
+from course_testing.image import load_rgb
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 BLUE = (0x1f, 0x77, 0xb4)     # first curve
@@ -17,17 +18,6 @@ def _env(roscore, xvfb):
     env = dict(roscore.env, DISPLAY=xvfb.display)
     env.pop('QT_QPA_PLATFORM', None)
     return env
-
-
-def load_rgb(path):
-    """PNG -> HxWx3 uint8 array (through Qt, no extra imaging library)."""
-    from PyQt5.QtGui import QImage
-    img = QImage(str(path)).convertToFormat(QImage.Format_RGB888)
-    assert not img.isNull(), path
-    w, h, bpl = img.width(), img.height(), img.bytesPerLine()
-    bits = img.constBits()
-    bits.setsize(h * bpl)
-    return np.frombuffer(bits, np.uint8).reshape(h, bpl)[:, :w * 3].reshape(h, w, 3).copy()
 
 
 def curve_extent(rgb, color):

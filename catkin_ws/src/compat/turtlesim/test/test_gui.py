@@ -8,23 +8,13 @@ import numpy as np
 import pytest
 
 from course_testing import Proc, screenshot, wait_for
+from course_testing.image import load_rgb
 
 SIZE = 499.0 / 45.0
 BACKGROUND = (69, 86, 255)
 PEN = (179, 184, 255)
 ARTIFACTS = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.dirname(
     os.path.dirname(os.path.dirname(os.path.abspath(__file__))))))), 'build', 'test-artifacts')
-
-
-def load_rgb(path):
-    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-    from PyQt5.QtGui import QImage
-    img = QImage(path).convertToFormat(QImage.Format_RGB32)
-    w, h = img.width(), img.height()
-    ptr = img.constBits()
-    ptr.setsize(h * img.bytesPerLine())
-    arr = np.frombuffer(ptr, np.uint8).reshape(h, img.bytesPerLine() // 4, 4)[:, :w, :3]
-    return arr[:, :, ::-1].copy()          # BGRA -> RGB
 
 
 def region(rgb, colour):

@@ -8,22 +8,12 @@ import numpy as np
 import pytest
 
 from course_testing import Proc, Xvfb, screenshot, wait_for
+from course_testing.image import load_rgb
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 PKG = os.path.dirname(HERE)
 REPO = os.path.abspath(os.path.join(PKG, '..', '..', '..', '..'))
 ARTIFACTS = os.path.join(REPO, 'build', 'test-artifacts')
-
-
-def load_rgb(path):
-    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-    from PyQt5.QtGui import QImage
-    img = QImage(path).convertToFormat(QImage.Format_RGB32)
-    w, h = img.width(), img.height()
-    ptr = img.constBits()
-    ptr.setsize(h * img.bytesPerLine())
-    arr = np.frombuffer(ptr, np.uint8).reshape(h, img.bytesPerLine() // 4, 4)[:, :w, :3]
-    return arr[:, :, ::-1].copy()          # BGRA -> RGB
 
 
 def orange_mask(rgb):

@@ -9,22 +9,11 @@ import time
 
 import numpy as np
 
+from course_testing.image import load_rgb
+
 BACKGROUND = (48, 48, 48)     # rviz default, also in every rviz config of the course
 REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), *(['..'] * 6)))
 ARTIFACTS = os.path.join(REPO, 'build', 'test-artifacts')
-
-
-def load_rgb(path):
-    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-    from PyQt5.QtGui import QImage
-    img = QImage(path).convertToFormat(QImage.Format_RGB32)
-    if img.isNull():
-        raise ValueError('cannot read image %s' % path)
-    w, h = img.width(), img.height()
-    ptr = img.constBits()
-    ptr.setsize(h * img.bytesPerLine())
-    arr = np.frombuffer(ptr, np.uint8).reshape(h, img.bytesPerLine() // 4, 4)[:, :w, :3]
-    return arr[:, :, ::-1].copy()
 
 
 def view_region(rgb, background=BACKGROUND):
