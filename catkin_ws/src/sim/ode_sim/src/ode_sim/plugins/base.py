@@ -183,6 +183,9 @@ class Plugin:
         return True
 
     # -- lifecycle
+    def before_step(self):
+        pass
+
     def update(self):
         pass
 

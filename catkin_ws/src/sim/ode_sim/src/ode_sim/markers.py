@@ -1,0 +1,82 @@
+"""The scene as RViz markers (there is no Gazebo GUI): one Marker per visual shape."""
+import numpy as np
+from geometry_msgs.msg import Point, Pose as PoseMsg
+from std_msgs.msg import ColorRGBA
+from visualization_msgs.msg import Marker, MarkerArray
+
+from .transforms import Pose, quat_from_axis_angle
+
+NS = 'ode_sim'
+
+
+def pose_msg(pose):
+    m = PoseMsg()
+    m.position.x, m.position.y, m.position.z = (float(v) for v in pose.p)
+    m.orientation.x, m.orientation.y, m.orientation.z, m.orientation.w = (float(v) for v in pose.q)
+    return m
+
+
+def shape_marker(shape, marker_id, frame, stamp):
+    """A Marker for one ShapeInstance (box, cylinder, sphere, plane, mesh), or None."""
+    g = shape.geometry
+    m = Marker()
+    m.header.frame_id = frame
+    m.header.stamp = stamp
+    m.ns = '%s/%s' % (NS, shape.model)
+    m.id = marker_id
+    m.action = Marker.ADD
+    pose = shape.world_pose()
+    m.color = ColorRGBA(*[float(c) for c in shape.color])
+    if g.kind == 'box':
+        m.type = Marker.CUBE
+        m.scale.x, m.scale.y, m.scale.z = (max(float(v), 1e-4) for v in g.size)
+    elif g.kind == 'cylinder':
+        m.type = Marker.CYLINDER
+        m.scale.x = m.scale.y = 2 * float(g.radius)
+        m.scale.z = float(g.length)
+    elif g.kind == 'sphere':
+        m.type = Marker.SPHERE
+        m.scale.x = m.scale.y = m.scale.z = 2 * float(g.radius)
+    elif g.kind == 'plane':
+        # a thin slab whose top face is the plane, a millimetre low so RViz's grid stays visible
+        m.type = Marker.CUBE
+        sx, sy = (float(v) for v in g.plane_size)
+        m.scale.x, m.scale.y, m.scale.z = sx, sy, 0.001
+        n = np.asarray(g.normal, dtype=float)
+        n = n / np.linalg.norm(n)
+        z = np.array([0.0, 0.0, 1.0])
+        axis = np.cross(z, n)
+        if np.linalg.norm(axis) < 1e-9:
+            rot = Pose()
+        else:
+            rot = Pose((0, 0, 0), quat_from_axis_angle(axis, np.arccos(np.clip(n @ z, -1, 1))))
+        pose = pose * rot * Pose((0, 0, -0.0015))
+    elif g.kind == 'mesh':
+        if g.vertices is None or g.faces is None:
+            return None
+        m.type = Marker.TRIANGLE_LIST
+        m.scale.x = m.scale.y = m.scale.z = 1.0
+        tri = g.vertices[g.faces.reshape(-1)]
+        m.points = [Point(float(x), float(y), float(z)) for x, y, z in tri]
+    else:
+        return None
+    m.pose = pose_msg(pose)
+    m.frame_locked = False
+    return m
+
+
+def scene_markers(shapes, frame, stamp, include=None):
+    """MarkerArray for the shapes (optionally filtered by include(shape)), plus a DELETEALL
+    first so removed models disappear."""
+    arr = MarkerArray()
+    clear = Marker()
+    clear.header.frame_id = frame
+    clear.action = Marker.DELETEALL
+    arr.markers.append(clear)
+    for i, s in enumerate(shapes):
+        if include is not None and not include(s):
+            continue
+        mk = shape_marker(s, i, frame, stamp)
+        if mk is not None:
+            arr.markers.append(mk)
+    return arr

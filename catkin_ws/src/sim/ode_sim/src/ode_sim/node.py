@@ -1,0 +1,200 @@
+"""The simulator process: world + robots + plugins, paced as Gazebo, with the /gazebo ROS API.
+
+The simulation thread steps the physics; rospy threads serve /gazebo/* services, which take
+`self.lock` around every change of the world. See gazebo_api.py for the services.
+"""
+import threading
+import time
+
+import rospy
+from rosgraph_msgs.msg import Clock
+
+from . import plugins as plugin_registry
+from .model import ModelError
+from .physics import PhysicsWorld
+from .plugins.base import PluginContext
+from .transforms import Pose
+
+
+class Spawner:
+    """Turns a Model description into a simulated model with its plugins."""
+
+    def __init__(self, node):
+        self.node = node
+
+    def plugins_for(self, sim_model, desc):
+        """Instantiate the model's and its sensors' plugins; unknown ones warn and are skipped."""
+        ctx = self.node.ctx
+        out = []
+        tags = [(p, None) for p in desc.plugins]
+        for link in desc.links:
+            for sensor in link.sensors:
+                for p in sensor.plugins:
+                    tags.append((p, sensor))
+        for p, sensor in tags:
+            cls = plugin_registry.lookup(p.filename)
+            if cls is None:
+                rospy.logwarn("ode_sim: %s: model '%s': unknown plugin '%s' (name '%s') ignored; "
+                              "known plugins: %s" % (p.source or desc.source, desc.name,
+                                                     p.filename, p.name,
+                                                     ', '.join(plugin_registry.known())))
+                continue
+            out.append(cls(ctx, sim_model, p, sensor))
+        return out
+
+
+class SimNode:
+    def __init__(self, world, paused=False, lockstep=False, verbose=False):
+        self.world = world
+        self.physics = PhysicsWorld(world.physics, world.gravity)
+        self.lock = threading.RLock()
+        self.paused = paused
+        self.verbose = verbose
+        self.rate = world.physics.real_time_update_rate
+        self.plugins = {}           # model name -> [Plugin]
+        self._pre = []              # plugins overriding before_step
+        self._post = []
+        self.tf = None
+        try:
+            import tf2_ros
+            self.tf = tf2_ros.TransformBroadcaster()
+        except Exception:           # pragma: no cover - tf2_ros is a dependency
+            self.tf = None
+        self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf)
+        self.spawner = Spawner(self)
+        self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        freq = float(rospy.get_param('gazebo/pub_clock_frequency', 0) or 0)
+        self.clock_period = 1.0 / freq if freq > 0 else 0.0
+        self._last_clock = -1.0
+        self._last_clock_wall = 0.0
+        self.step_hooks = []        # callables run after each step (model_states publisher ...)
+        self._stop = threading.Event()
+        self._resync = True
+        for m in world.models:
+            self.add_model(m)
+        for w in world.warnings:
+            rospy.logwarn('ode_sim: %s' % w)
+
+    # ----------------------------------------------------------------- models
+    def add_model(self, desc):
+        """Add a model and start its plugins (under the lock). Raises ModelError."""
+        with self.lock:
+            for w in desc.warnings:
+                rospy.logwarn('ode_sim: %s' % w)
+            sim_model = self.physics.add_model(desc)
+            try:
+                plugins = self.spawner.plugins_for(sim_model, desc)
+            except Exception as e:
+                self.physics.remove_model(desc.name)
+                if isinstance(e, ModelError):
+                    raise
+                raise ModelError("model '%s': a plugin failed to load: %s" % (desc.name, e))
+            self.plugins[desc.name] = plugins
+            self._rebuild_hooks()
+            return sim_model
+
+    def remove_model(self, name):
+        with self.lock:
+            for p in self.plugins.pop(name, []):
+                try:
+                    p.shutdown()
+                except Exception as e:  # a failing plugin must not keep the model alive
+                    rospy.logwarn('ode_sim: plugin shutdown of model %s: %s' % (name, e))
+            self._rebuild_hooks()
+            return self.physics.remove_model(name)
+
+    def _rebuild_hooks(self):
+        from .plugins.base import Plugin
+        allp = [p for ps in self.plugins.values() for p in ps]
+        self._pre = [p for p in allp if type(p).before_step is not Plugin.before_step]
+        self._post = [p for p in allp if type(p).update is not Plugin.update]
+
+    # ----------------------------------------------------------------- control
+    def pause(self):
+        self.paused = True
+
+    def unpause(self):
+        self.paused = False
+        self._resync = True
+
+    def reset(self, time_too):
+        with self.lock:
+            self.physics.reset_world()
+            if time_too:
+                self.physics.reset_time()
+                self._last_clock = -1.0
+            for ps in self.plugins.values():
+                for p in ps:
+                    p.reset()
+            self._resync = True
+            self.publish_clock(force=True)
+
+    # ----------------------------------------------------------------- loop
+    def publish_clock(self, force=False):
+        t = self.physics.time
+        if not force:
+            if self.clock_period > 0:
+                if self._last_clock >= 0 and t - self._last_clock < self.clock_period - 1e-9:
+                    return
+            else:
+                # every step, but not more often than 1 kHz of wall time (fast mode)
+                now = time.monotonic()
+                if now - self._last_clock_wall < 0.001:
+                    return
+                self._last_clock_wall = now
+        self._last_clock = t
+        self.clock_pub.publish(Clock(clock=rospy.Time.from_sec(t)))
+
+    def step_once(self):
+        for p in self._pre:
+            p.before_step()
+        with self.lock:
+            self.physics.step()
+            for p in self._post:
+                p.update()
+            for hook in self.step_hooks:
+                hook()
+        self.publish_clock()
+
+    def spin(self):
+        """Run until rospy shuts down: step, pace, publish."""
+        dt = self.physics.dt
+        wall0 = 0.0
+        sim0 = 0.0
+        self.publish_clock(force=True)
+        while not rospy.is_shutdown() and not self._stop.is_set():
+            if self.paused:
+                time.sleep(0.005)
+                self._resync = True
+                continue
+            if self._resync:
+                wall0 = time.monotonic()
+                sim0 = self.physics.steps
+                self._resync = False
+                self.rate = self.world.physics.real_time_update_rate
+            self.step_once()
+            if self.rate > 0:
+                target = wall0 + (self.physics.steps - sim0) / self.rate
+                ahead = target - time.monotonic()
+                if ahead > 0.002:
+                    time.sleep(ahead)
+                elif ahead < -0.5:
+                    self._resync = True     # fell far behind (slow machine): do not catch up
+        for ps in self.plugins.values():
+            for p in ps:
+                try:
+                    p.shutdown()
+                except Exception:
+                    pass
+
+    def stop(self):
+        self._stop.set()
+
+
+def model_pose_from_request(pose_msg):
+    p = pose_msg.position
+    o = pose_msg.orientation
+    q = (o.x, o.y, o.z, o.w)
+    if q == (0.0, 0.0, 0.0, 0.0):
+        q = (0.0, 0.0, 0.0, 1.0)
+    return Pose((p.x, p.y, p.z), q)
