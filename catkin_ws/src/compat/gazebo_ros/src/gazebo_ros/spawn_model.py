@@ -1,0 +1,328 @@
+"""spawn_model: put a URDF or SDF model into the simulator through <gazebo_namespace>/spawn_*_model.
+
+The command line is gazebo_ros' `spawn_model` (ROS Noetic): exactly one format (-urdf | -sdf),
+exactly one source (-file | -param | -database | -stdin), -model NAME, the initial pose, -J
+joint positions, -unpause, -wait, -package_to_model and -b (bond). The pure parts (arguments,
+loading and checking the XML, the pose) need no ROS master and are unit-tested;
+`SpawnModelNode.run` does the service calls.
+"""
+import argparse
+import math
+import os
+import sys
+import xml.etree.ElementTree as ET
+from urllib.parse import urlsplit, urlunsplit
+
+DEFAULT_GAZEBO_NAMESPACE = '/gazebo'
+
+
+class SpawnError(Exception):
+    """A problem with the input; str() is the one line the user sees."""
+
+
+def build_parser(default_robot_namespace='/'):
+    parser = argparse.ArgumentParser(
+        prog='spawn_model', description='Spawn a model in the simulator using the ROS API')
+    fmt = parser.add_mutually_exclusive_group(required=True)
+    fmt.add_argument('-urdf', action='store_true', help='the model XML is URDF')
+    fmt.add_argument('-sdf', action='store_true', help='the model XML is SDF')
+    src = parser.add_mutually_exclusive_group(required=True)
+    src.add_argument('-file', metavar='FILE_NAME', help='load the model XML from a file')
+    src.add_argument('-param', metavar='PARAM_NAME', help='load the model XML from a ROS parameter')
+    src.add_argument('-database', metavar='MODEL_NAME',
+                     help='load model://MODEL_NAME from the model library (GAZEBO_MODEL_PATH, '
+                          'ode_sim/models)')
+    src.add_argument('-stdin', action='store_true', help='read the model XML from standard input')
+    parser.add_argument('-model', required=True, metavar='MODEL_NAME', help='name of the model')
+    parser.add_argument('-reference_frame', default='',
+                        help='model/link the initial pose is relative to ("" or "world": world)')
+    parser.add_argument('-gazebo_namespace', default=DEFAULT_GAZEBO_NAMESPACE,
+                        help='ROS namespace of the simulator interface (default /gazebo)')
+    parser.add_argument('-robot_namespace', default=default_robot_namespace,
+                        help='ROS namespace given to the model plugins (default: this node\'s)')
+    parser.add_argument('-unpause', action='store_true', help='unpause physics after spawning')
+    parser.add_argument('-wait', metavar='MODEL_NAME',
+                        help='wait until this model is in <gazebo_namespace>/model_states')
+    for axis, what in (('x', 'x of the initial position, m'), ('y', 'y of the initial position, m'),
+                       ('z', 'z of the initial position, m'), ('R', 'roll, rad'),
+                       ('P', 'pitch, rad'), ('Y', 'yaw, rad')):
+        parser.add_argument('-' + axis, type=float, default=0.0, help=what)
+    parser.add_argument('-J', dest='joints', default=[], action='append', nargs=2,
+                        metavar=('JOINT_NAME', 'JOINT_POSITION'),
+                        help='initial position of a joint (repeatable)')
+    parser.add_argument('-package_to_model', action='store_true',
+                        help='rewrite <mesh filename="package://..."> to model://...')
+    parser.add_argument('-b', dest='bond', action='store_true',
+                        help='delete the model when this program is interrupted')
+    return parser
+
+
+def parse_args(argv, default_robot_namespace='/'):
+    """Parse the arguments (without the program name and ROS remappings); argparse exits with
+    status 2 and a usage line on bad ones."""
+    parser = build_parser(default_robot_namespace)
+    args = parser.parse_args(argv)
+    joints = []
+    for name, value in args.joints:
+        try:
+            joints.append((name, float(value)))
+        except ValueError:
+            parser.error('-J %s %s: the joint position is not a number' % (name, value))
+    args.joints = joints
+    return args
+
+
+# ---------------------------------------------------------------------------------- model XML
+
+def model_search_path(env=None, ode_sim_models=None):
+    """Directories searched for model://NAME: GAZEBO_MODEL_PATH, ~/.gazebo/models, then ode_sim's
+    model library (found with rospkg unless given)."""
+    env = os.environ if env is None else env
+    paths = [p for p in env.get('GAZEBO_MODEL_PATH', '').split(':') if p]
+    home = env.get('HOME')
+    if home:
+        paths.append(os.path.join(home, '.gazebo', 'models'))
+    if ode_sim_models is None:
+        try:
+            import rospkg
+            ode_sim_models = os.path.join(rospkg.RosPack().get_path('ode_sim'), 'models')
+        except Exception:                       # rospkg missing or ode_sim not on the path
+            ode_sim_models = None
+    if ode_sim_models:
+        paths.append(ode_sim_models)
+    return paths
+
+
+def _version_key(text):
+    try:
+        return tuple(int(p) for p in (text or '0').split('.'))
+    except ValueError:
+        return (0,)
+
+
+def model_sdf_file(model_dir):
+    """The SDF file of a model directory: the newest <sdf version=...> of model.config, else
+    model.sdf. Raises SpawnError when model.config is broken or names a missing file."""
+    config = os.path.join(model_dir, 'model.config')
+    if os.path.isfile(config):
+        try:
+            root = ET.parse(config).getroot()
+        except ET.ParseError as e:
+            raise SpawnError('%s: invalid XML: %s' % (config, e))
+        sdfs = [s for s in root.findall('sdf') if (s.text or '').strip()]
+        if sdfs:
+            best = max(sdfs, key=lambda s: _version_key(s.get('version')))
+            path = os.path.join(model_dir, best.text.strip())
+            if not os.path.isfile(path):
+                raise SpawnError('%s: <sdf> names %s, which does not exist' % (config, path))
+            return path
+    path = os.path.join(model_dir, 'model.sdf')
+    if os.path.isfile(path):
+        return path
+    raise SpawnError('%s: no model.sdf and no <sdf> in model.config' % model_dir)
+
+
+def find_database_model(name, paths):
+    """Path of the SDF file of model://name, searching `paths` in order."""
+    for base in paths:
+        model_dir = os.path.join(base, name)
+        if os.path.isdir(model_dir):
+            return model_sdf_file(model_dir)
+    raise SpawnError('-database %s: model://%s is in none of: %s'
+                     % (name, name, ':'.join(paths) or '(no model paths)'))
+
+
+def read_file(path):
+    if not os.path.exists(path):
+        raise SpawnError('Error: specified file %s does not exist' % path)
+    if not os.path.isfile(path):
+        raise SpawnError('Error: specified file %s is not a file' % path)
+    try:
+        with open(path, encoding='utf-8') as f:
+            text = f.read()
+    except (OSError, UnicodeDecodeError) as e:
+        raise SpawnError('Error reading file %s: %s' % (path, e))
+    if not text.strip():
+        raise SpawnError('Error: file %s is empty' % path)
+    return text
+
+
+def load_model_xml(args, get_param=None, stdin=None, model_paths=None):
+    """The model XML named by the source argument. `get_param(name)` returns the parameter's
+    value or None; `stdin` is a file to read for -stdin; `model_paths` the -database path."""
+    if args.file:
+        return read_file(args.file)
+    if args.param:
+        value = get_param(args.param) if get_param else None
+        if not isinstance(value, str) or not value.strip():
+            raise SpawnError('Error: param %s does not exist or is empty' % args.param)
+        return value
+    if args.database:
+        paths = model_search_path() if model_paths is None else model_paths
+        return read_file(find_database_model(args.database, paths))
+    if args.stdin:
+        text = (stdin if stdin is not None else sys.stdin).read()
+        if not text.strip():
+            raise SpawnError('Error: stdin buffer was empty')
+        return text
+    raise SpawnError('no model source given (-file, -param, -database or -stdin)')
+
+
+def package_to_model(root):
+    """Rewrite package://PKG/... mesh filenames under `root` to model://PKG/...; returns the
+    number of rewritten meshes."""
+    count = 0
+    for mesh in root.iter('mesh'):
+        filename = mesh.get('filename')
+        if filename is None:
+            continue
+        url = urlsplit(filename)
+        if url.scheme == 'package':
+            mesh.set('filename', urlunsplit(('model',) + tuple(url[1:])))
+            count += 1
+    return count
+
+
+def process_xml(text, rewrite_package_uris=False):
+    """Check that `text` is well-formed XML ("Invalid XML: ..." otherwise); with
+    rewrite_package_uris, return it with package:// mesh URIs rewritten to model://.
+    Otherwise the text is returned unchanged (comments, namespaces and declaration kept)."""
+    try:
+        root = ET.fromstring(text.encode('utf-8') if isinstance(text, str) else text)
+    except ET.ParseError as e:
+        raise SpawnError('Invalid XML: %s' % e)
+    if rewrite_package_uris and package_to_model(root):
+        return ET.tostring(root, encoding='unicode')
+    return text
+
+
+# ---------------------------------------------------------------------------------------- pose
+
+def quaternion_from_euler(roll, pitch, yaw):
+    """(x, y, z, w) of rotations about the static axes x (roll), y (pitch), z (yaw) in that
+    order: tf.transformations.quaternion_from_euler's default 'sxyz' convention."""
+    cr, sr = math.cos(roll / 2.0), math.sin(roll / 2.0)
+    cp, sp = math.cos(pitch / 2.0), math.sin(pitch / 2.0)
+    cy, sy = math.cos(yaw / 2.0), math.sin(yaw / 2.0)
+    return (sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy)
+
+
+def initial_pose(args):
+    """geometry_msgs/Pose from -x -y -z -R -P -Y."""
+    from geometry_msgs.msg import Point, Pose, Quaternion
+    return Pose(Point(args.x, args.y, args.z),
+                Quaternion(*quaternion_from_euler(args.R, args.P, args.Y)))
+
+
+# ---------------------------------------------------------------------------------------- node
+
+class SpawnModelNode:
+    """The ROS side: wait, spawn, configure joints, unpause, hold the bond."""
+
+    def __init__(self, args):
+        self.args = args
+        self._model_seen = False
+
+    def _models_cb(self, msg):
+        if self.args.wait in msg.name:
+            self._model_seen = True
+
+    def wait_for_model(self):
+        """Block until -wait's model is in model_states; False when ROS shut down first."""
+        import rospy
+        from gazebo_msgs.msg import ModelStates
+        sub = rospy.Subscriber(self.args.gazebo_namespace + '/model_states', ModelStates,
+                               self._models_cb, queue_size=1)
+        rospy.loginfo('Waiting for model %s before proceeding.', self.args.wait)
+        rate = rospy.Rate(10)
+        try:
+            while not rospy.is_shutdown() and not self._model_seen:
+                rate.sleep()
+        except rospy.ROSInterruptException:
+            pass
+        sub.unregister()
+        return self._model_seen
+
+    def _get_param(self, name):
+        import rospy
+        return rospy.get_param(name, None)
+
+    def run(self):
+        """Exit status: 0 success, 1 failure."""
+        import rospy
+        from gazebo_ros import gazebo_interface
+        args = self.args
+        if args.wait and not self.wait_for_model():
+            return 0
+        try:
+            if args.file:
+                rospy.loginfo('Loading model XML from file %s', args.file)
+            elif args.param:
+                rospy.loginfo('Loading model XML from ros parameter %s', args.param)
+            elif args.database:
+                rospy.loginfo('Loading model XML from the model library: model://%s',
+                              args.database)
+            else:
+                rospy.loginfo('Loading model XML from stdin')
+            model_xml = load_model_xml(args, get_param=self._get_param)
+            model_xml = process_xml(model_xml, args.package_to_model)
+        except SpawnError as e:
+            rospy.logerr('%s', e)
+            return 1
+
+        spawn = (gazebo_interface.spawn_urdf_model_client if args.urdf
+                 else gazebo_interface.spawn_sdf_model_client)
+        if not spawn(args.model, model_xml, args.robot_namespace, initial_pose(args),
+                     args.reference_frame, args.gazebo_namespace):
+            rospy.logerr('Spawn service failed. Exiting.')
+            return 1
+
+        if args.joints:
+            if not gazebo_interface.set_model_configuration_client(
+                    args.model, '', [j[0] for j in args.joints], [j[1] for j in args.joints],
+                    args.gazebo_namespace):
+                rospy.logerr('SetModelConfiguration service failed. Exiting.')
+                return 1
+
+        if args.unpause:
+            from std_srvs.srv import Empty
+            name = args.gazebo_namespace + '/unpause_physics'
+            rospy.loginfo('Unpausing physics')
+            rospy.wait_for_service(name)
+            try:
+                rospy.ServiceProxy(name, Empty)()
+            except rospy.ServiceException as e:
+                rospy.logerr('Unpause physics service call failed: %s', e)
+                return 1
+
+        if args.bond:
+            rospy.on_shutdown(self.delete_model)
+            rospy.loginfo('Waiting for shutdown to delete model %s', args.model)
+            rospy.spin()
+        return 0
+
+    def delete_model(self):
+        """Shutdown hook of -b: runs before rospy stops, so the service call still works."""
+        import rospy
+        from gazebo_msgs.srv import DeleteModel
+        rospy.loginfo('Deleting model %s', self.args.model)
+        try:
+            rospy.ServiceProxy(self.args.gazebo_namespace + '/delete_model', DeleteModel)(
+                model_name=self.args.model)
+        except (rospy.ServiceException, rospy.ROSException) as e:
+            rospy.logerr('Delete model service call failed: %s', e)
+
+
+def main(argv=None):
+    import rospy
+    argv = rospy.myargv(sys.argv if argv is None else argv)
+    # rospy.get_namespace() already honours __ns:= and ROS_NAMESPACE before init_node
+    args = parse_args(argv[1:], rospy.get_namespace())
+    rospy.init_node('spawn_model', anonymous=True)
+    try:
+        return SpawnModelNode(args).run()
+    except rospy.ROSInterruptException:
+        return 1
