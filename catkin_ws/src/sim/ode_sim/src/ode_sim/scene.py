@@ -18,6 +18,7 @@ class ShapeInstance:
     color: Tuple[float, float, float, float] = (0.7, 0.7, 0.7, 1.0)
     link_pose: Optional[Callable[[], Pose]] = None   # current link pose in the world; None = static
     static_pose: Pose = field(default_factory=Pose)  # link pose in the world when static
+    laser_retro: float = 0.0                   # collisions: <laser_retro>, the lidar intensity
 
     @property
     def static(self):

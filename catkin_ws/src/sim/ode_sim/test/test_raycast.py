@@ -1,0 +1,271 @@
+"""Ray caster: analytic distances per geometry kind, exclusion, dynamic shapes, and agreement
+with ODE's own ray geom (pyODE) on the same shapes."""
+import math
+
+import numpy as np
+import pytest
+
+from ode_sim.model import Geometry, ModelError
+from ode_sim.raycast import RayCaster, scan_directions
+from ode_sim.scene import ShapeInstance
+from ode_sim.transforms import Pose
+
+
+def shape(key, geometry, pose=None, link_pose=None, model=None, link='link', local=None):
+    return ShapeInstance(key=key, model=model or key, link=link, geometry=geometry,
+                         local=local or Pose(), static_pose=pose or Pose(),
+                         link_pose=link_pose)
+
+
+def box(key, size, xyz, rpy=(0, 0, 0), **kw):
+    return shape(key, Geometry('box', size=tuple(size)), Pose.from_xyz_rpy(xyz, rpy), **kw)
+
+
+def uv_sphere(radius, n_lat=12, n_lon=24):
+    """A closed triangulated sphere (vertices, faces)."""
+    verts = [(0.0, 0.0, radius)]
+    for i in range(1, n_lat):
+        th = math.pi * i / n_lat
+        for j in range(n_lon):
+            ph = 2 * math.pi * j / n_lon
+            verts.append((radius * math.sin(th) * math.cos(ph),
+                          radius * math.sin(th) * math.sin(ph), radius * math.cos(th)))
+    verts.append((0.0, 0.0, -radius))
+    faces = []
+    for j in range(n_lon):
+        faces.append((0, 1 + j, 1 + (j + 1) % n_lon))
+    for i in range(n_lat - 2):
+        a, b = 1 + i * n_lon, 1 + (i + 1) * n_lon
+        for j in range(n_lon):
+            j2 = (j + 1) % n_lon
+            faces.append((a + j, b + j, b + j2))
+            faces.append((a + j, b + j2, a + j2))
+    last = len(verts) - 1
+    base = 1 + (n_lat - 2) * n_lon
+    for j in range(n_lon):
+        faces.append((base + j, last, base + (j + 1) % n_lon))
+    return np.array(verts), np.array(faces)
+
+
+def box_mesh(size):
+    hx, hy, hz = np.asarray(size) / 2.0
+    v = np.array([[sx * hx, sy * hy, sz * hz] for sx in (-1, 1) for sy in (-1, 1)
+                  for sz in (-1, 1)])
+    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])
+    return v, f
+
+
+RING = np.array([[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]], dtype=float)
+
+
+def test_walls_in_four_directions():
+    shapes = [box('east', (0.2, 10, 2), (3.1, 0, 0)), box('north', (10, 0.2, 2), (0, 2.1, 0)),
+              box('west', (0.2, 10, 2), (-4.1, 0, 0)), box('south', (10, 0.2, 2), (0, -1.6, 0))]
+    d = RayCaster(shapes).cast(np.zeros(3), RING, 10.0)
+    np.testing.assert_allclose(d, [3.0, 2.0, 4.0, 1.5], atol=1e-9)
+
+
+def test_nothing_within_range_is_inf_and_max_range_is_respected():
+    rc = RayCaster([box('east', (0.2, 10, 2), (3.1, 0, 0))])
+    d = rc.cast(np.zeros(3), RING, 10.0)
+    assert d[0] == pytest.approx(3.0) and np.all(np.isinf(d[1:]))
+    assert np.isinf(rc.cast(np.zeros(3), RING, 2.9)[0])
+    assert RayCaster([]).cast([0, 0, 0], RING, 5.0).tolist() == [np.inf] * 4
+
+
+def test_sphere_and_cylinder_analytic():
+    shapes = [shape('ball', Geometry('sphere', radius=0.5), Pose((2, 0, 0))),
+              shape('can', Geometry('cylinder', radius=0.3, length=1.0), Pose((0, 3, 0))),
+              shape('lying', Geometry('cylinder', radius=0.25, length=2.0),
+                    Pose.from_xyz_rpy((-2, 0, 0), (math.pi / 2, 0, 0)))]
+    rc = RayCaster(shapes)
+    d = rc.cast(np.zeros(3), RING, 10.0)
+    assert d[0] == pytest.approx(1.5, abs=1e-12)
+    assert d[1] == pytest.approx(2.7, abs=1e-12)
+    assert d[2] == pytest.approx(1.75, abs=1e-12)
+    # off-centre ray on the sphere: chord geometry
+    y = 0.3
+    d = rc.cast([0, y, 0], [[1, 0, 0]], 10.0)
+    assert d[0] == pytest.approx(2 - math.sqrt(0.25 - y * y), abs=1e-12)
+    # the upright cylinder's flat cap from above, and just beside it
+    d = rc.cast([[0, 3.2, 5], [0, 3.31, 5]], [[0, 0, -1], [0, 0, -1]], 10.0)
+    assert d[0] == pytest.approx(4.5, abs=1e-12) and np.isinf(d[1])
+
+
+def test_mesh_hits_analytic_and_inside_reports_exit():
+    v, f = box_mesh((1, 2, 3))
+    rc = RayCaster([shape('crate', Geometry('mesh', vertices=v, faces=f), Pose((4, 0, 0)))])
+    d = rc.cast(np.zeros(3), RING, 10.0)
+    assert d[0] == pytest.approx(3.5, abs=1e-12) and np.all(np.isinf(d[1:]))
+    d = rc.cast([4, 0, 0], RING, 10.0)        # from inside: the nearest face ahead
+    np.testing.assert_allclose(d, [0.5, 1.0, 0.5, 1.0], atol=1e-12)
+    v, f = uv_sphere(1.0, 16, 32)
+    rc = RayCaster([shape('ball', Geometry('mesh', vertices=v, faces=f), Pose((0, 0, 5)))])
+    d = rc.cast(np.zeros(3), [[0, 0, 1]], 10.0)
+    assert d[0] == pytest.approx(4.0, abs=1e-12)   # a vertex sits on the pole
+
+
+def test_solids_from_inside_report_the_exit_point():
+    shapes = [box('b', (2, 2, 2), (0, 0, 0)), ]
+    np.testing.assert_allclose(RayCaster(shapes).cast(np.zeros(3), RING, 5), [1, 1, 1, 1])
+    s = [shape('s', Geometry('sphere', radius=2.0), Pose((0.5, 0, 0)))]
+    np.testing.assert_allclose(RayCaster(s).cast(np.zeros(3), RING[:1], 5), [2.5])
+    c = [shape('c', Geometry('cylinder', radius=1.0, length=4.0), Pose())]
+    np.testing.assert_allclose(RayCaster(c).cast(np.zeros(3), [[1, 0, 0], [0, 0, 1]], 5),
+                               [1.0, 2.0])
+
+
+def test_plane_is_two_sided_for_rays():
+    rc = RayCaster([shape('ground', Geometry('plane', normal=(0, 0, 1)), Pose((0, 0, -1)))])
+    d = rc.cast([[0, 0, 0], [0, 0, -2], [0, 0, -2], [0, 0, 0]],
+                [[0, 0, -1], [0, 0, 1], [0, 0, -1], [1, 0, 0]], 10.0)
+    assert d[0] == pytest.approx(1.0) and d[1] == pytest.approx(1.0)
+    assert np.isinf(d[2]) and np.isinf(d[3])
+    s = math.sqrt(0.5)
+    assert rc.cast([0, 0, 0], [[s, 0, -s]], 10.0)[0] == pytest.approx(math.sqrt(2))
+
+
+def test_rotated_box():
+    # a 2 x 0.2 wall at x = 2 turned 45 degrees about Z: the ray along X meets its face
+    # where x - 2 = -(0.1 / cos 45)
+    rc = RayCaster([box('w', (0.2, 2, 1), (2, 0, 0), (0, 0, math.pi / 4))])
+    d = rc.cast(np.zeros(3), RING[:1], 10.0)
+    assert d[0] == pytest.approx(2 - 0.1 * math.sqrt(2), abs=1e-12)
+    # box rolled 90 degrees about X: its 3 m long Z side now lies along Y
+    rc = RayCaster([box('w', (0.5, 0.5, 3.0), (0, 4, 0), (math.pi / 2, 0, 0))])
+    assert rc.cast(np.zeros(3), RING[1:2], 10.0)[0] == pytest.approx(2.5, abs=1e-12)
+
+
+def test_exclusion_by_pairs_and_callable():
+    shapes = [box('own', (0.3, 0.3, 0.3), (0, 0, 0), model='robot', link='base_scan'),
+              box('far', (0.2, 10, 2), (3.1, 0, 0))]
+    rc = RayCaster(shapes)
+    assert rc.cast(np.zeros(3), RING[:1], 10.0)[0] == pytest.approx(0.15)
+    assert rc.cast(np.zeros(3), RING[:1], 10.0,
+                   exclude={('robot', 'base_scan')})[0] == pytest.approx(3.0)
+    assert rc.cast(np.zeros(3), RING[:1], 10.0,
+                   exclude=lambda s: s.link == 'base_scan')[0] == pytest.approx(3.0)
+    # meshes too, static and dynamic
+    v, f = box_mesh((0.3, 0.3, 0.3))
+    m = [shape('own', Geometry('mesh', vertices=v, faces=f), Pose(), model='robot',
+               link='base_scan'),
+         shape('own2', Geometry('mesh', vertices=v, faces=f), link_pose=lambda: Pose(),
+               model='robot', link='base_scan'), shapes[1]]
+    rc = RayCaster(m)
+    assert rc.cast(np.zeros(3), RING[:1], 10.0)[0] == pytest.approx(0.15)
+    assert rc.cast(np.zeros(3), RING[:1], 10.0,
+                   exclude={('robot', 'base_scan')})[0] == pytest.approx(3.0)
+
+
+def test_dynamic_shapes_are_reposed_on_every_cast():
+    where = {'p': Pose((3, 0, 0))}
+    v, f = box_mesh((0.2, 0.2, 0.2))
+    shapes = [shape('cart', Geometry('box', size=(0.2, 0.2, 0.2)), link_pose=lambda: where['p']),
+              shape('ball', Geometry('sphere', radius=0.1), link_pose=lambda: where['p'],
+                    local=Pose((0, 2, 0))),
+              shape('crate', Geometry('mesh', vertices=v, faces=f), link_pose=lambda: where['p'],
+                    local=Pose((0, -2, 0))),
+              shape('can', Geometry('cylinder', radius=0.1, length=1),
+                    link_pose=lambda: where['p'], local=Pose((-6, 0, 0)))]
+    rc = RayCaster(shapes)
+    o = np.zeros(3)
+    dirs = np.array([[1, 0, 0], [3, 2, 0], [3, -2, 0], [-1, 0, 0]], float)
+    dirs /= np.linalg.norm(dirs, axis=1)[:, None]
+    d1 = rc.cast(o, dirs, 20.0)
+    assert d1[0] == pytest.approx(2.9) and d1[3] == pytest.approx(2.9)
+    assert np.all(np.isfinite(d1))
+    where['p'] = Pose((5, 0, 0))
+    d2 = rc.cast(o, dirs, 20.0)
+    assert d2[0] == pytest.approx(4.9) and d2[3] == pytest.approx(0.9)
+    assert np.isinf(d2[1]) and np.isinf(d2[2])   # moved off those rays
+
+
+def test_rays_per_origin_and_bad_input():
+    rc = RayCaster([box('east', (0.2, 10, 2), (3.1, 0, 0))])
+    d = rc.cast([[0, 0, 0], [1, 0, 0], [2.5, 1, 0]], [[1, 0, 0]] * 3, 10.0)
+    np.testing.assert_allclose(d, [3.0, 2.0, 0.5])
+    with pytest.raises(ValueError):
+        rc.cast(np.zeros((2, 3)), np.zeros((3, 3)), 1.0)
+    with pytest.raises(ModelError, match='torus'):
+        RayCaster([shape('x', Geometry('torus'))])
+    with pytest.raises(ModelError, match='no triangles'):
+        RayCaster([shape('x', Geometry('mesh', uri='model://x/a.dae'))])
+
+
+def test_scan_directions_order_matches_gazebo():
+    d = scan_directions({'samples': 3, 'min_angle': -math.pi / 2, 'max_angle': math.pi / 2,
+                         'v_samples': 2, 'v_min_angle': 0.0, 'v_max_angle': math.pi / 4,
+                         'range_min': 0.1, 'range_max': 5})
+    assert d.shape == (6, 3)
+    np.testing.assert_allclose(d[:3], [[0, -1, 0], [1, 0, 0], [0, 1, 0]], atol=1e-12)
+    s = math.sqrt(0.5)
+    np.testing.assert_allclose(d[3:], [[0, -s, s], [s, 0, s], [0, s, s]], atol=1e-12)
+    one = scan_directions({'samples': 1, 'min_angle': 1.0, 'max_angle': 2.0, 'range_max': 1})
+    np.testing.assert_allclose(one, [[1, 0, 0]])
+
+
+# ---------------------------------------------------------------------------------------------
+# the same geometry in ODE
+
+def _ode_distance(ode, geoms, origin, direction, max_range):
+    ray = ode.GeomRay(None, max_range)
+    ray.set(tuple(origin), tuple(direction))
+    best = np.inf
+    for g in geoms:
+        for c in ode.collide(ray, g):
+            best = min(best, c.getContactGeomParams()[2])
+    return best
+
+
+def _ode_geom(ode, s):
+    g = s.geometry
+    pose = s.world_pose()
+    if g.kind == 'box':
+        geom = ode.GeomBox(None, tuple(g.size))
+    elif g.kind == 'sphere':
+        geom = ode.GeomSphere(None, g.radius)
+    elif g.kind == 'cylinder':
+        geom = ode.GeomCylinder(None, g.radius, g.length)
+    elif g.kind == 'plane':
+        n = pose.rotate(g.normal)
+        return ode.GeomPlane(None, tuple(n), float(np.dot(n, pose.p)))
+    else:   # Debian's pyODE has no trimesh: our box-shaped meshes meet ODE as the box
+        geom = ode.GeomBox(None, tuple(g.vertices.max(axis=0) - g.vertices.min(axis=0)))
+    geom.setPosition(tuple(pose.p))
+    geom.setRotation(tuple(pose.rotation().reshape(-1)))
+    return geom
+
+
+def test_agrees_with_ode_ray_geom():
+    ode = pytest.importorskip('ode')
+    rng = np.random.default_rng(7)
+    v_ball, f_ball = box_mesh((1.2, 0.6, 0.9))
+    v_crate, f_crate = box_mesh((0.8, 0.5, 0.4))
+    shapes = [box('b1', (1.0, 0.4, 0.7), (2.0, 0.5, 0.1), (0.3, 0.2, 0.9)),
+              box('b2', (0.3, 2.0, 1.0), (-2.0, -1.0, 0.0), (0, 0, -0.4)),
+              shape('s1', Geometry('sphere', radius=0.45), Pose((0.5, 2.5, 0.3))),
+              shape('c1', Geometry('cylinder', radius=0.35, length=1.2),
+                    Pose.from_xyz_rpy((-1.0, 2.0, 0.0), (0.5, 0.1, 0))),
+              shape('c2', Geometry('cylinder', radius=0.2, length=0.6),
+                    Pose.from_xyz_rpy((1.5, -2.0, 0.2), (0, 0, 0))),
+              shape('m1', Geometry('mesh', vertices=v_ball, faces=f_ball),
+                    Pose.from_xyz_rpy((-2.5, 1.5, 0.2), (0.1, 0.2, 0.3))),
+              shape('m2', Geometry('mesh', vertices=v_crate, faces=f_crate),
+                    link_pose=lambda: Pose.from_xyz_rpy((0.0, -2.5, 0.0), (0, 0.3, 1.0))),
+              shape('ground', Geometry('plane', normal=(0, 0, 1)), Pose((0, 0, -0.6)))]
+    rc = RayCaster(shapes)
+    geoms = [_ode_geom(ode, s) for s in shapes]
+    n = 80
+    origins = rng.uniform(-0.4, 0.4, (n, 3))
+    dirs = rng.normal(size=(n, 3))
+    dirs[:, 2] *= 0.5                       # mostly sideways, like a lidar, some to the floor
+    dirs /= np.linalg.norm(dirs, axis=1)[:, None]
+    ours = rc.cast(origins, dirs, 6.0)
+    theirs = np.array([_ode_distance(ode, geoms, o, d, 6.0) for o, d in zip(origins, dirs)])
+    hit = np.isfinite(theirs)
+    assert hit.sum() >= 40                  # the test exercises real hits
+    kinds = {shapes[k].geometry.kind for k in rc.cast_hits(origins, dirs, 6.0)[1] if k >= 0}
+    assert kinds == {'box', 'sphere', 'cylinder', 'mesh', 'plane'}
+    np.testing.assert_array_equal(np.isfinite(ours), hit)
+    np.testing.assert_allclose(ours[hit], theirs[hit], atol=1e-6, rtol=0)
