@@ -1,8 +1,9 @@
 """Camera images by real OpenGL, offscreen: moderngl on Mesa's EGL (llvmpipe works, no display).
 
 One EGL context per process, created on first use and shared by every Renderer (each has its
-own framebuffer of its own size). All GL calls go through a module lock, so renderers may be
-used from several threads, one at a time.
+own framebuffer of its own size). An EGL context is current in one thread only, so all GL work
+runs in one daemon thread of this module ("ode_sim-gl"); Renderer methods may be called from
+any thread (they hand the GL part over and wait for it).
 
 Camera convention (Gazebo's): the camera frame looks along +X, +Z is up, +Y is left. The image
 is a pinhole projection with square pixels: focal length f = width / (2 tan(hfov / 2)) pixels,
@@ -23,6 +24,7 @@ little Blinn-Phong specular; both sides of a triangle are lit (normals face the 
 culling, no shadows, colours are opaque (alpha ignored).
 """
 import math
+import queue
 import threading
 
 import numpy as np
@@ -50,45 +52,79 @@ void main() {
 }
 """
 
-_FRAGMENT_SHADER = """
-#version 330
-uniform vec4 u_color;
-uniform vec3 u_ambient;
-uniform vec3 u_eye;
-uniform int u_nlights;
-uniform vec4 u_light_vec[%(n)d];       // xyz: direction (w = 0) or position (w = 1), world
-uniform vec3 u_light_diffuse[%(n)d];
-uniform vec3 u_light_specular[%(n)d];
-in vec3 v_world;
-in vec3 v_normal;
-out vec4 f_color;
-void main() {
-    vec3 n = normalize(v_normal);
-    vec3 view = normalize(u_eye - v_world);
-    if (dot(n, view) < 0.0) n = -n;
-    vec3 c = u_ambient * u_color.rgb;
-    for (int i = 0; i < u_nlights; ++i) {
-        vec3 l = u_light_vec[i].w == 0.0 ? -u_light_vec[i].xyz
-                                         : normalize(u_light_vec[i].xyz - v_world);
-        float d = dot(n, l);
-        if (d > 0.0) {
-            c += d * u_light_diffuse[i] * u_color.rgb;
-            float s = max(dot(n, normalize(l + view)), 0.0);
-            c += %(spec)f * pow(s, %(shin)f) * u_light_specular[i];
-        }
-    }
-    f_color = vec4(min(c, vec3(1.0)), 1.0);
-}
-""" % {'n': MAX_LIGHTS, 'spec': SPECULAR, 'shin': SHININESS}
 
-_lock = threading.RLock()
+
+def _fragment_shader(nlights):
+    """Per-pixel lighting, the light loop unrolled for `nlights` lights and branch-free (a
+    loop over a uniform count with pow() costs llvmpipe ~3x as much)."""
+    head = ['#version 330', 'uniform vec4 u_color;', 'uniform vec3 u_ambient;']
+    if nlights:
+        head += ['uniform vec3 u_eye;',
+                 # xyz: direction towards which the light shines (w = 0) or its position (w = 1)
+                 'uniform vec4 u_light_vec[%d];' % nlights,
+                 'uniform vec3 u_light_diffuse[%d];' % nlights,
+                 'uniform vec3 u_light_specular[%d];' % nlights]
+    head += ['in vec3 v_world;', 'in vec3 v_normal;', 'out vec4 f_color;', 'void main() {',
+             '    vec3 base = u_color.rgb;', '    vec3 c = u_ambient * base;']
+    if nlights:
+        head += ['    vec3 view = normalize(u_eye - v_world);',
+                 '    vec3 n = normalize(v_normal);',
+                 '    n = dot(n, view) < 0.0 ? -n : n;         // both sides lit']
+    squarings = int(round(math.log2(SHININESS)))
+    for i in range(nlights):
+        head += ['    {',
+                 '        vec4 lv = u_light_vec[%d];' % i,
+                 '        vec3 l = normalize(mix(-lv.xyz, lv.xyz - v_world, lv.w));',
+                 '        float d = max(dot(n, l), 0.0);',
+                 '        float s = max(dot(n, normalize(l + view)), 0.0);',
+                 '        ' + ' '.join(['s *= s;'] * squarings) + '   // s^%d' % 2 ** squarings,
+                 '        c += d * u_light_diffuse[%d] * base' % i,
+                 '             + (d > 0.0 ? %f * s : 0.0) * u_light_specular[%d];' % (SPECULAR, i),
+                 '    }']
+    head += ['    f_color = vec4(min(c, vec3(1.0)), 1.0);', '}', '']
+    return '\n'.join(head)
+
+
 _ctx = None
-_prog = None
+_programs = {}          # number of lights -> moderngl.Program
+_gl_thread = None
+_gl_queue = queue.Queue()
+_gl_start = threading.Lock()
+
+
+def _gl_worker():
+    while True:
+        fn, args, result, done = _gl_queue.get()
+        try:
+            result.append(fn(*args))
+        except BaseException as e:  # noqa: BLE001 - handed back to the caller
+            result.append(e)
+            result.append(None)
+        done.set()
+
+
+def _gl(fn, *args):
+    """Run fn(*args) in the GL thread and return its result (or raise its exception)."""
+    global _gl_thread
+    if threading.current_thread() is _gl_thread:
+        return fn(*args)
+    if _gl_thread is None:
+        with _gl_start:
+            if _gl_thread is None:
+                t = threading.Thread(target=_gl_worker, name='ode_sim-gl', daemon=True)
+                t.start()
+                _gl_thread = t
+    result, done = [], threading.Event()
+    _gl_queue.put((fn, args, result, done))
+    done.wait()
+    if len(result) == 2:
+        raise result[0]
+    return result[0]
 
 
 def _context():
-    """The process's EGL context and shader program, created on first call."""
-    global _ctx, _prog
+    """The process's EGL context, created on first call (GL thread only)."""
+    global _ctx
     if _ctx is None:
         try:
             import moderngl
@@ -96,19 +132,35 @@ def _context():
             raise ModelError('ode_sim.render: cannot import moderngl (%s): install the Debian '
                              'package python3-moderngl' % e) from None
         try:
-            ctx = moderngl.create_standalone_context(backend='egl', require=330)
+            _ctx = moderngl.create_standalone_context(backend='egl', require=330)
         except Exception as e:  # noqa: BLE001 - moderngl raises plain Exception
             raise ModelError('ode_sim.render: cannot create an offscreen OpenGL 3.3 context '
                              'through EGL (%s): install libegl1, libegl-mesa0 and '
                              'libgl1-mesa-dri' % str(e).strip().splitlines()[0]) from None
+    return _ctx
+
+
+def _program(nlights):
+    """The shader program for `nlights` lights (GL thread only)."""
+    prog = _programs.get(nlights)
+    if prog is None:
+        ctx = _context()
         try:
-            prog = ctx.program(vertex_shader=_VERTEX_SHADER, fragment_shader=_FRAGMENT_SHADER)
+            prog = ctx.program(vertex_shader=_VERTEX_SHADER,
+                               fragment_shader=_fragment_shader(nlights))
         except Exception as e:  # noqa: BLE001
-            ctx.release()
             raise ModelError('ode_sim.render: shader compilation failed on %s: %s'
                              % (ctx.info.get('GL_RENDERER', '?'), e)) from None
-        _ctx, _prog = ctx, prog
-    return _ctx, _prog
+        _programs[nlights] = prog
+    return prog
+
+
+def gl_renderer():
+    """'GL_RENDERER, GL_VERSION' of the shared context (creates it): e.g. 'llvmpipe ...'."""
+    def info():
+        i = _context().info
+        return '%s, OpenGL %s' % (i.get('GL_RENDERER', '?'), i.get('GL_VERSION', '?'))
+    return _gl(info)
 
 
 def focal_length(width, hfov):
@@ -179,20 +231,23 @@ class Renderer:
         proj[3, 2] = -1.0
         self._proj = proj @ _CAM_TO_GL
         self._shapes = []
-        self._meshes = {}                  # id(geometry) -> (geometry, vbo, ibo, vao)
-        self._background = (0.7, 0.7, 0.7, 1.0)
+        self._meshes = {}                  # id(geometry) -> _Mesh
+        self._prog = None
         self._released = False
-        with _lock:
-            ctx, _ = _context()
-            try:
-                self._color_rb = ctx.renderbuffer((width, height), components=4)
-                self._depth_rb = ctx.depth_renderbuffer((width, height))
-                self._fbo = ctx.framebuffer(color_attachments=[self._color_rb],
-                                            depth_attachment=self._depth_rb)
-            except Exception as e:  # noqa: BLE001
-                raise ModelError('ode_sim.render: cannot create a %dx%d framebuffer: %s'
-                                 % (width, height, e)) from None
+        self._color_rb = self._depth_rb = self._fbo = None
+        _gl(self._gl_create)
         self.set_scene([])
+
+    def _gl_create(self):
+        ctx = _context()
+        try:
+            self._color_rb = ctx.renderbuffer((self.width, self.height), components=4)
+            self._depth_rb = ctx.depth_renderbuffer((self.width, self.height))
+            self._fbo = ctx.framebuffer(color_attachments=[self._color_rb],
+                                        depth_attachment=self._depth_rb)
+        except Exception as e:  # noqa: BLE001 - moderngl raises plain Exception
+            raise ModelError('ode_sim.render: cannot create a %dx%d framebuffer: %s'
+                             % (self.width, self.height, e)) from None
 
     # ---------------------------------------------------------------- scene
     def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1), background=(0.7, 0.7, 0.7, 1)):
@@ -200,55 +255,57 @@ class Renderer:
 
         GPU meshes are cached per geometry object (by identity): calling again after models
         were added or removed uploads only the new geometries and frees the unused ones.
+        Only the first MAX_LIGHTS lights are used; point and spot lights shine from their
+        position in all directions without falloff.
         """
-        self._ambient = _check_color('scene ambient', ambient)
+        amb = _check_color('scene ambient', ambient)
         bg = _check_color('scene background', background)
-        self._background = tuple(bg) + (1.0,)
-        if len(lights) > MAX_LIGHTS:
-            lights = list(lights)[:MAX_LIGHTS]
+        lights = list(lights)[:MAX_LIGHTS]
         vec, dif, spe = [], [], []
         for light in lights:
             if light.type == 'directional':
                 d = np.asarray(light.direction, dtype=float)
-                n = np.linalg.norm(d)
+                n = np.linalg.norm(d) if d.shape == (3,) else 0.0
                 if not np.isfinite(n) or n == 0:
-                    raise ModelError('ode_sim.render: light %r: direction %s is not a direction'
-                                     % (light.name, list(light.direction)))
+                    raise ModelError('ode_sim.render: light %r: direction %r is not a 3D '
+                                     'direction' % (light.name, light.direction))
                 vec += list(d / n) + [0.0]
-            else:                       # point, spot: from the light's position, no falloff
+            else:
                 vec += list(light.pose.p) + [1.0]
             dif += _check_color('light %r diffuse' % light.name, light.diffuse)
             spe += _check_color('light %r specular' % light.name, light.specular)
-        pad = MAX_LIGHTS - len(lights)
-        self._lights = (len(lights),
-                        np.array(vec + [0.0] * 4 * pad, dtype='f4').tobytes(),
-                        np.array(dif + [0.0] * 3 * pad, dtype='f4').tobytes(),
-                        np.array(spe + [0.0] * 3 * pad, dtype='f4').tobytes())
-        with _lock:
-            ctx, prog = _context()
-            keep = {}
-            draw = []
-            for s in shapes:
-                key = id(s.geometry)
-                entry = keep.get(key) or self._meshes.get(key)
-                if entry is None or entry[0] is not s.geometry:
-                    pos, nrm, idx = tessellate(s.geometry, s.key)
-                    if len(idx) == 0:
-                        continue
-                    data = np.concatenate([pos, nrm], axis=1).astype('f4')
-                    vbo = ctx.buffer(data.tobytes())
-                    ibo = ctx.buffer(idx.astype('u4').tobytes())
-                    vao = ctx.vertex_array(prog, [(vbo, '3f 3f', 'in_pos', 'in_normal')], ibo)
-                    entry = (s.geometry, vbo, ibo, vao)
-                keep[key] = entry
-                color = _check_color('%s: colour' % s.key, s.color)
-                draw.append((s, entry[3], np.array(color + [1.0], dtype='f4').tobytes()))
-            for key, entry in self._meshes.items():
-                if keep.get(key) is not entry:
-                    for obj in entry[:0:-1]:
-                        obj.release()
-            self._meshes = keep
-            self._shapes = draw
+        lights_u = (len(lights), np.array(vec, dtype='f4').tobytes(),
+                    np.array(dif, dtype='f4').tobytes(), np.array(spe, dtype='f4').tobytes())
+        # CPU side first (bad input raises before anything changes), then the upload
+        draw, new = [], {}
+        for sh in shapes:
+            key = id(sh.geometry)
+            color = _check_color('%s: colour' % sh.key, sh.color)
+            old = self._meshes.get(key)
+            if key not in new and (old is None or old.geometry is not sh.geometry):
+                pos, nrm, idx = tessellate(sh.geometry, sh.key)
+                new[key] = (sh.geometry, np.concatenate([pos, nrm], axis=1).astype('f4'),
+                            idx.astype('u4'))
+            draw.append((sh, key, np.array(color + [1.0], dtype='f4').tobytes()))
+        _gl(self._gl_set_scene, draw, new, lights_u)
+        self._ambient, self._background, self._lights = amb, tuple(bg) + (1.0,), lights_u
+
+    def _gl_set_scene(self, draw, new, lights_u):
+        ctx = _context()
+        prog = _program(lights_u[0])
+        keep = {}
+        for key, (geometry, data, idx) in new.items():
+            keep[key] = _Mesh(ctx, geometry, data, idx)
+        for _, key, _ in draw:
+            if key not in keep:
+                keep[key] = self._meshes[key]
+        for key, mesh in self._meshes.items():
+            if keep.get(key) is not mesh:
+                mesh.release()
+        self._meshes = keep
+        self._prog = prog
+        self._shapes = [(sh, keep[key].vao(ctx, prog), col) for sh, key, col in draw
+                        if keep[key].count]
 
     # --------------------------------------------------------------- render
     def render(self, camera_pose):
@@ -257,59 +314,97 @@ class Renderer:
         if self._released:
             raise ModelError('ode_sim.render: render() on a released Renderer')
         cam = camera_pose.matrix()
-        view = np.linalg.inv(cam)
-        viewproj = (self._proj @ view).T.astype('f4').tobytes()       # column-major for GL
+        viewproj = (self._proj @ np.linalg.inv(cam)).T.astype('f4').tobytes()  # column-major
         models = [(s.world_pose().matrix().T.astype('f4').tobytes(), vao, col)
                   for s, vao, col in self._shapes]
         rgb = np.empty((self.height, self.width, 3), dtype=np.uint8)
-        depth = None
-        with _lock:
-            ctx, prog = _context()
-            self._fbo.use()
-            ctx.enable_only(ctx.DEPTH_TEST)
-            self._fbo.clear(*self._background, depth=1.0)
-            prog['u_viewproj'].write(viewproj)
-            prog['u_ambient'].value = tuple(self._ambient)
-            prog['u_eye'].value = tuple(float(v) for v in cam[:3, 3])
-            n, vec, dif, spe = self._lights
-            prog['u_nlights'].value = n
+        zbuf = np.empty((self.height, self.width), dtype=np.float32) if self.depth else None
+        _gl(self._gl_render, viewproj, tuple(float(v) for v in cam[:3, 3]), models, rgb, zbuf)
+        return rgb, (self._linear_depth(zbuf) if self.depth else None)
+
+    def _gl_render(self, viewproj, eye, models, rgb, zbuf):
+        ctx, prog = _context(), self._prog
+        self._fbo.use()
+        ctx.enable_only(ctx.DEPTH_TEST)
+        self._fbo.clear(*self._background, depth=1.0)
+        prog['u_viewproj'].write(viewproj)
+        prog['u_ambient'].value = tuple(self._ambient)
+        n, vec, dif, spe = self._lights
+        if n:
+            prog['u_eye'].value = eye
             prog['u_light_vec'].write(vec)
             prog['u_light_diffuse'].write(dif)
             prog['u_light_specular'].write(spe)
-            u_model, u_color = prog['u_model'], prog['u_color']
-            for model, vao, col in models:
-                u_model.write(model)
-                u_color.write(col)
-                vao.render()
-            self._fbo.read_into(rgb, components=3, alignment=1)
-            if self.depth:
-                zbuf = np.empty((self.height, self.width), dtype=np.float32)
-                self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
-        if self.depth:
-            depth = self._linear_depth(zbuf)
-        return rgb, depth
+        u_model, u_color = prog['u_model'], prog['u_color']
+        for model, vao, col in models:
+            u_model.write(model)
+            u_color.write(col)
+            vao.render()
+        self._fbo.read_into(rgb, components=3, alignment=1)
+        if zbuf is not None:
+            self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
 
     def _linear_depth(self, zbuf):
-        """Window depth in [0, 1] -> distance along the optical axis; 1 (cleared) -> inf."""
+        """Window depth z in [0, 1] -> distance along the optical axis, n f / (f - z (f - n)),
+        in place (float32); z = 1 (cleared: no surface) or beyond far -> inf."""
         n, f = self.near, self.far
-        z = zbuf.astype(np.float64)
-        ndc = 2.0 * z - 1.0
+        miss = zbuf >= 1.0
+        d = zbuf
+        d *= -(f - n)
+        d += f
         with np.errstate(divide='ignore'):
-            d = (2.0 * n * f) / ((f + n) - ndc * (f - n))
-        d[(zbuf >= 1.0) | (d > f)] = np.inf
-        return d.astype(np.float32)
+            np.divide(n * f, d, out=d)
+        d[miss | (d > f)] = np.inf
+        return d
 
     def release(self):
         """Free this renderer's GPU objects (the shared context stays)."""
         if self._released:
             return
-        with _lock:
-            for entry in self._meshes.values():
-                for obj in entry[:0:-1]:
-                    obj.release()
-            self._meshes = {}
-            self._shapes = []
-            self._fbo.release()
-            self._color_rb.release()
-            self._depth_rb.release()
         self._released = True
+        _gl(self._gl_release)
+
+    def _gl_release(self):
+        for mesh in self._meshes.values():
+            mesh.release()
+        self._meshes = {}
+        self._shapes = []
+        for obj in (self._fbo, self._color_rb, self._depth_rb):
+            if obj is not None:
+                obj.release()
+        self._fbo = self._color_rb = self._depth_rb = None
+
+    def __del__(self):
+        try:
+            if not self._released and _gl_thread is not None:
+                self._released = True
+                _gl_queue.put((self._gl_release, (), [], threading.Event()))
+        except Exception:  # noqa: BLE001 - interpreter shutdown
+            pass
+
+
+class _Mesh:
+    """GPU buffers of one geometry and its vertex arrays, one per shader program."""
+
+    def __init__(self, ctx, geometry, data, idx):
+        self.geometry = geometry
+        self.count = len(idx)
+        self.vbo = ctx.buffer(data.tobytes()) if self.count else None
+        self.ibo = ctx.buffer(idx.tobytes()) if self.count else None
+        self.vaos = {}
+
+    def vao(self, ctx, prog):
+        vao = self.vaos.get(id(prog))
+        if vao is None:
+            vao = ctx.vertex_array(prog, [(self.vbo, '3f 3f', 'in_pos', 'in_normal')], self.ibo)
+            self.vaos[id(prog)] = vao
+        return vao
+
+    def release(self):
+        for vao in self.vaos.values():
+            vao.release()
+        self.vaos = {}
+        for buf in (self.ibo, self.vbo):
+            if buf is not None:
+                buf.release()
+        self.ibo = self.vbo = None
