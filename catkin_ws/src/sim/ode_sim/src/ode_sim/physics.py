@@ -6,6 +6,8 @@ Conventions as Gazebo classic on ODE:
 - links of one model do not collide with each other unless the link has self_collide;
 - contact parameters combine the two surfaces: mu = min, kp in series, kd summed, turned into
   ODE's soft ERP/CFM for the step size; friction pyramid (dContactApprox1) as Gazebo's default;
+- joints attach (child, parent) as Gazebo does, so angles, rates and efforts are the child's
+  motion relative to the parent about/along the axis;
 - joint damping is a torque -d*qdot, joint friction a zero-velocity motor limited to the
   friction value (used only while no velocity/position command drives the joint);
 - static models (and the plane) have geoms without bodies.
@@ -22,6 +24,17 @@ from .scene import ShapeInstance
 from .transforms import Pose, quat_from_axis_angle, quat_to_matrix
 
 ENV = ode.environment
+
+# Joint parameter numbers of the ODE library actually linked (libode 0.16): PyODE 1.2 still
+# exports the pre-0.13 numbering (ode.ParamFMax == 3, which is dParamLoVel in 0.16), so setting
+# a motor's force through ode.ParamFMax silently does nothing. These are dParam* of 0.16.
+P_LO_STOP, P_HI_STOP, P_VEL, P_LO_VEL, P_HI_VEL, P_FMAX = 0, 1, 2, 3, 4, 5
+
+# ODE worlds, spaces and joint groups are never freed. PyODE's objects clear their references
+# in arbitrary order when the garbage collector breaks a cycle, so a world could be destroyed
+# before its bodies (dBodyDestroy on freed memory: segfault). Bodies, joints and geoms are
+# still freed; only these small containers stay, one set per PhysicsWorld.
+_KEEP_ALIVE = []
 
 
 def _ode_q(q):
@@ -167,16 +180,16 @@ class SimJoint:
             if vmax is not None:
                 vel = max(-vmax, min(vmax, vel))
             fmax = self.limit_effort if self.limit_effort is not None else 1e6
-            j.setParam(ode.ParamVel, vel)
-            j.setParam(ode.ParamFMax, fmax)
+            j.setParam(P_VEL, vel)
+            j.setParam(P_FMAX, fmax)
         elif self.vel_cmd is not None:
-            j.setParam(ode.ParamVel, self.vel_cmd[0])
-            j.setParam(ode.ParamFMax, self.vel_cmd[1])
+            j.setParam(P_VEL, self.vel_cmd[0])
+            j.setParam(P_FMAX, self.vel_cmd[1])
         elif self.desc.friction > 0:
-            j.setParam(ode.ParamVel, 0.0)
-            j.setParam(ode.ParamFMax, self.desc.friction)
+            j.setParam(P_VEL, 0.0)
+            j.setParam(P_FMAX, self.desc.friction)
         else:
-            j.setParam(ode.ParamFMax, 0.0)
+            j.setParam(P_FMAX, 0.0)
         if effort:
             if self.hinge:
                 j.addTorque(effort)
@@ -256,7 +269,8 @@ class SimModel:
                 raise ModelError("model '%s' has no joint '%s'" % (self.name, name))
         q = {n: j.position() for n, j in self.joints.items()}
         q.update({k: float(v) for k, v in positions.items()})
-        model_pose = self.pose()
+        fixed = any(j.parent == 'world' for j in self.desc.joints)
+        model_pose = self.initial_pose if fixed else self.pose()
         rel = _forward_kinematics(self.desc, q)
         for name, link in self.links.items():
             if link.body is None or name not in rel:
@@ -271,19 +285,18 @@ class SimModel:
 
 def _forward_kinematics(desc, q):
     """Rigid motion of each link relative to the zero configuration, in the model frame:
-    {link: Pose} such that link pose (model frame) = motion * link.pose."""
-    motion = {desc.canonical_link or desc.links[0].name: Pose()}
+    {link: Pose} such that link pose (model frame) = motion * link.pose. Roots (links no joint
+    leads to) and the world do not move."""
     children = {}
     for j in desc.joints:
         children.setdefault(j.parent, []).append(j)
+    has_parent = {j.child for j in desc.joints}
+    motion = {'world': Pose()}
+    motion.update({l.name: Pose() for l in desc.links if l.name not in has_parent})
     stack = list(motion)
-    for j in children.get('world', []):
-        motion.setdefault(j.child, Pose())
-        stack.append(j.child)
     while stack:
         parent = stack.pop()
         for j in children.get(parent, []):
-            m = motion[parent]
             v = q.get(j.name, 0.0)
             if j.type in ('revolute', 'continuous'):
                 rot = Pose((0, 0, 0), quat_from_axis_angle(j.axis, v))
@@ -292,7 +305,7 @@ def _forward_kinematics(desc, q):
                 local = Pose(np.asarray(j.axis) * v)
             else:
                 local = Pose()
-            motion[j.child] = m * local
+            motion[j.child] = motion[parent] * local
             stack.append(j.child)
     return motion
 
@@ -312,6 +325,7 @@ class PhysicsWorld:
         self.world.setContactSurfaceLayer(physics.contact_surface_layer)
         self.static_space = ode.HashSpace()
         self.contact_group = ode.JointGroup()
+        _KEEP_ALIVE.extend((self.world, self.static_space, self.contact_group))
         self.models = {}
         self.time = 0.0
         self.steps = 0
@@ -333,6 +347,8 @@ class PhysicsWorld:
         m = SimModel(self, desc)
         static = desc.static
         space = self.static_space if static else ode.HashSpace()
+        if not static:
+            _KEEP_ALIVE.append(space)
         m.space = space
         world_of = desc.pose
         for ld in desc.links:
@@ -446,27 +462,27 @@ class PhysicsWorld:
         t = jd.type
         if t in ('revolute', 'continuous'):
             j = ode.HingeJoint(self.world)
-            j.attach(pb, cb)
+            j.attach(cb, pb)
             j.setAnchor(tuple(anchor))
             j.setAxis(tuple(axis))
             if t == 'revolute' and jd.lower is not None and jd.upper is not None \
                     and jd.upper >= jd.lower:
-                j.setParam(ode.ParamLoStop, jd.lower)
-                j.setParam(ode.ParamHiStop, jd.upper)
+                j.setParam(P_LO_STOP, jd.lower)
+                j.setParam(P_HI_STOP, jd.upper)
         elif t == 'prismatic':
             j = ode.SliderJoint(self.world)
-            j.attach(pb, cb)
+            j.attach(cb, pb)
             j.setAxis(tuple(axis))
             if jd.lower is not None and jd.upper is not None and jd.upper >= jd.lower:
-                j.setParam(ode.ParamLoStop, jd.lower)
-                j.setParam(ode.ParamHiStop, jd.upper)
+                j.setParam(P_LO_STOP, jd.lower)
+                j.setParam(P_HI_STOP, jd.upper)
         elif t == 'fixed':
             j = ode.FixedJoint(self.world)
-            j.attach(pb, cb)
+            j.attach(cb, pb)
             j.setFixed()
         elif t == 'ball':
             j = ode.BallJoint(self.world)
-            j.attach(pb, cb)
+            j.attach(cb, pb)
             j.setAnchor(tuple(anchor))
         else:
             raise ModelError("%s: joint '%s': type '%s' is not supported" % (src, jd.name, t))

@@ -1,0 +1,165 @@
+"""PhysicsWorld on hand-built descriptions: gravity, contacts, friction, joints, state changes."""
+import math
+
+import numpy as np
+import pytest
+
+from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
+                           Physics, Surface, Visual)
+from ode_sim.physics import PhysicsWorld
+from ode_sim.transforms import Pose
+
+
+def ground():
+    return Model('ground_plane', static=True, links=[Link('link', collisions=[
+        Collision('c', Geometry('plane'), surface=Surface(mu1=100, mu2=50))])])
+
+
+def box(name='box', z=10.0, size=(1, 1, 1), mass=1.0, mu=1.0, pose=None):
+    sx, sy, sz = size
+    inertial = Inertial(mass, ixx=mass * (sy ** 2 + sz ** 2) / 12,
+                        iyy=mass * (sx ** 2 + sz ** 2) / 12, izz=mass * (sx ** 2 + sy ** 2) / 12)
+    return Model(name, pose=pose or Pose((0, 0, z)), links=[Link(
+        'link', inertial=inertial,
+        collisions=[Collision('c', Geometry('box', size=size), surface=Surface(mu1=mu, mu2=mu))],
+        visuals=[Visual('v', Geometry('box', size=size), color=(1, 0, 0, 1))])])
+
+
+def pendulum(damping=0.0, lower=None, upper=None):
+    """An arm of 1 kg, 1 m long on a revolute joint about Y at 2 m height, fixed to the world."""
+    arm = Link('arm', pose=Pose((0.5, 0, 2)), inertial=Inertial(1.0, ixx=1e-3, iyy=1 / 12, izz=1 / 12),
+               collisions=[Collision('c', Geometry('box', size=(1, 0.05, 0.05)))])
+    j = Joint('hinge', 'revolute' if lower is not None else 'continuous', 'world', 'arm',
+              anchor=np.array([0.0, 0, 2]), axis=np.array([0.0, 1, 0]), lower=lower, upper=upper,
+              damping=damping)
+    return Model('pendulum', links=[arm], joints=[j])
+
+
+def test_dropped_box_follows_g_within_one_percent():
+    pw = PhysicsWorld(Physics())
+    m = pw.add_model(box(z=20.0))
+    pw.step(1000)
+    fall = 20.0 - m.pose().p[2]
+    assert fall == pytest.approx(0.5 * 9.8 * 1.0 ** 2, rel=0.01)
+    assert pw.time == pytest.approx(1.0)
+
+
+def test_box_rests_on_ground_and_does_not_drift():
+    pw = PhysicsWorld(Physics())
+    pw.add_model(ground())
+    m = pw.add_model(box(z=0.5))
+    pw.step(500)
+    p0 = m.pose().p.copy()
+    pw.step(60000)          # one simulated minute
+    assert m.pose().p[2] == pytest.approx(0.5, abs=0.002)
+    assert np.linalg.norm(m.pose().p[:2] - p0[:2]) < 0.001
+
+
+def test_friction_holds_a_pushed_box_until_the_force_exceeds_mu_m_g():
+    pw = PhysicsWorld(Physics())
+    pw.add_model(ground())
+    m = pw.add_model(box(z=0.5, mu=0.5))
+    pw.step(200)
+    link = m.links['link']
+    for _ in range(500):            # 0.4 * m g < mu m g: stays
+        link.add_force((0.4 * 9.8, 0, 0))
+        pw.step()
+    assert abs(m.pose().p[0]) < 0.002
+    for _ in range(500):            # 0.8 * m g > mu m g: slides with a = 0.3 g
+        link.add_force((0.8 * 9.8, 0, 0))
+        pw.step()
+    assert m.twist()[0][0] == pytest.approx(0.3 * 9.8 * 0.5, rel=0.1)
+
+
+def test_pendulum_swings_and_limits_stop_it():
+    pw = PhysicsWorld(Physics())
+    m = pw.add_model(pendulum())
+    j = m.joints['hinge']
+    assert j.position() == pytest.approx(0.0)
+    pw.step(300)
+    assert j.position() > 0.3       # +Y rotation takes +X towards -Z: gravity pulls it down
+    pw2 = PhysicsWorld(Physics())
+    m2 = pw2.add_model(pendulum(lower=-0.2, upper=0.2))
+    pw2.step(2000)
+    assert m2.joints['hinge'].position() == pytest.approx(0.2, abs=0.02)
+
+
+def test_velocity_motor_and_effort():
+    pw = PhysicsWorld(Physics(), gravity=(0, 0, 0))
+    m = pw.add_model(pendulum())
+    j = m.joints['hinge']
+    j.set_velocity(2.0, fmax=100)
+    pw.step(100)
+    assert j.velocity() == pytest.approx(2.0, rel=1e-3)
+    j.release()
+    pw.step(10)
+    inertia = 1 / 12 + 1 * 0.5 ** 2         # about the hinge
+    v0 = j.velocity()
+    j.set_effort(1.0)
+    pw.step(1000)
+    assert j.velocity() - v0 == pytest.approx(1.0 / inertia * 1.0, rel=0.02)
+
+
+def test_position_target_and_configuration():
+    pw = PhysicsWorld(Physics())
+    m = pw.add_model(pendulum())
+    j = m.joints['hinge']
+    j.set_position_target(-0.5)
+    pw.step(1000)
+    assert j.position() == pytest.approx(-0.5, abs=1e-3)
+    j.release()
+    m.set_configuration({'hinge': 1.0})
+    assert j.position() == pytest.approx(1.0, abs=1e-6)
+    tip = m.links['arm'].pose().apply([0.5, 0, 0])
+    assert tip == pytest.approx([math.cos(1.0), 0, 2 - math.sin(1.0)], abs=1e-6)
+    with pytest.raises(ModelError, match="no joint 'nope'"):
+        m.set_configuration({'nope': 1})
+
+
+def test_set_pose_twist_reset_and_remove():
+    pw = PhysicsWorld(Physics(), gravity=(0, 0, 0))
+    m = pw.add_model(box(z=1.0))
+    m.set_pose(Pose.from_xyz_rpy((2, 3, 4), (0, 0, 1.0)))
+    assert m.pose().p == pytest.approx([2, 3, 4])
+    assert m.pose().rpy()[2] == pytest.approx(1.0)
+    m.set_twist((1, 0, 0), (0, 0, 0))
+    pw.step(1000)
+    assert m.pose().p == pytest.approx([3, 3, 4], abs=1e-6)
+    pw.reset_world()
+    assert m.pose().p == pytest.approx([0, 0, 1])
+    assert pw.time == pytest.approx(1.0)
+    pw.reset_time()
+    assert pw.time == 0.0
+    v = pw.version
+    assert pw.remove_model('box')
+    assert not pw.remove_model('box')
+    assert pw.version > v and 'box' not in pw.models
+    pw.step(10)
+
+
+def test_shapes_follow_links_and_static_models():
+    pw = PhysicsWorld(Physics())
+    pw.add_model(ground())
+    pw.add_model(box(z=3.0))
+    shapes = {s.key: s for s in pw.collision_shapes()}
+    assert shapes['ground_plane::link::c'].static
+    b = shapes['box::link::c']
+    z0 = b.world_pose().p[2]
+    pw.step(100)
+    assert b.world_pose().p[2] < z0
+    vis = pw.visual_shapes()
+    assert [s.color for s in vis] == [(1, 0, 0, 1)]
+
+
+def test_bad_models_are_refused_with_their_name():
+    pw = PhysicsWorld(Physics())
+    pw.add_model(box())
+    with pytest.raises(ModelError, match="already exists"):
+        pw.add_model(box())
+    zero = box('zero', mass=0.0)
+    with pytest.raises(ModelError, match="link 'link' of model 'zero' has no positive mass"):
+        pw.add_model(zero)
+    bad = pendulum()
+    bad.joints[0].child = 'ghost'
+    with pytest.raises(ModelError, match="unknown links"):
+        pw.add_model(bad)
