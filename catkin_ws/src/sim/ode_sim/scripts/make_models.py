@@ -287,7 +287,7 @@ def box_pallet():
 
 
 def potted_plant():
-    o = Obj('potted_plant', 'Indoor plant in a terracotta pot', (0.52, 0.46, 1.1), 9.0)
+    o = Obj('potted_plant', 'Indoor plant in a terracotta pot', (0.48, 0.44, 1.1), 9.0)
     o.visual('pot', TERRACOTTA, lathe([(0.0, 0.0), (0.12, 0.0), (0.15, 0.27), (0.16, 0.27),
                                        (0.16, 0.3), (0.145, 0.3), (0.112, 0.015), (0.0, 0.015)],
                                       24))
@@ -295,11 +295,11 @@ def potted_plant():
                             cylinder(0.02, 0.3, (0.0, 0.0, 0.4), segments=8)])
     o.visual('leaves', LEAF, [ellipsoid((0.24, 0.22, 0.3), (0.0, 0.0, 0.75)),
                               ellipsoid((0.15, 0.14, 0.15), (-0.08, -0.06, 0.95))])
-    o.visual('leaves_light', LEAF_LIGHT, [ellipsoid((0.18, 0.16, 0.18), (0.1, 0.08, 0.62)),
+    o.visual('leaves_light', LEAF_LIGHT, [ellipsoid((0.16, 0.16, 0.18), (0.08, 0.06, 0.62)),
                                           ellipsoid((0.12, 0.12, 0.12), (-0.12, 0.1, 0.7))])
     o.coll_cyl('pot', 0.15, 0.0, 0.3)
     o.coll_cyl('stem', 0.02, 0.3, 0.45, weight=0.5)
-    o.coll_sphere('foliage', 0.25, (0.0, 0.0, 0.75), weight=0.02)
+    o.coll_sphere('foliage', 0.22, (0.0, 0.0, 0.75), weight=0.02)
     return o
 
 
