@@ -135,7 +135,7 @@ def chair():
 
 
 def bookshelf():
-    o = Obj('bookshelf', 'Bookshelf with four shelves of books (static)', (0.3, 0.8, 1.8), 35.0,
+    o = Obj('bookshelf', 'Bookshelf with four shelves of books', (0.3, 0.8, 1.8), 35.0,
             static=True)
     w, d, h, t = 0.4, 0.15, 1.8, 0.02
     shelves_z = [0.08, 0.5, 0.92, 1.34]
@@ -193,7 +193,7 @@ def sofa():
 
 
 def door_frame():
-    o = Obj('door_frame', 'Door frame with a 0.9 m x 2.0 m opening (static)', (0.17, 1.14, 2.12),
+    o = Obj('door_frame', 'Door frame with a 0.9 m x 2.0 m opening', (0.17, 1.14, 2.12),
             30.0, static=True)
     frame = [box_between((-0.075, -0.55, 0), (0.075, -0.45, 2.0)),
              box_between((-0.075, 0.45, 0), (0.075, 0.55, 2.0)),
@@ -686,7 +686,20 @@ def readme(objs, rms):
                                                                    axis))
     lines += ['\nThe maze layout (`#` wall, north up, entrance and exit on the middle row):\n\n']
     lines += ['    %s\n' % row for row in MAZE]
-    lines += ['\nWorlds using these models are in `../worlds/`.\n']
+    lines += ['\nThe maze frame\'s origin is the middle of the entrance opening; cells span x 0..5,\n',
+              'y -2.5..2.5.\n\n',
+              '## Worlds (`../worlds/`)\n\n',
+              '| world | contents |\n|---|---|\n',
+              '| `empty.world` | sun + ground_plane, Gazebo\'s default ODE physics (as Gazebo\'s) |\n',
+              '| `empty_room.world` | `empty_room` centred on the origin |\n',
+              '| `office.world` | `office` + 13 pieces of furniture; the origin is in room B, '
+              '1 m clear |\n',
+              '| `maze.world` | `maze` at x = 1: the entrance 1 m ahead of the origin, the exit at '
+              'x = 6 |\n',
+              '| `objects.world` | 5 objects 2-5 m ahead (+x) of the origin, for camera/lidar '
+              'demos |\n',
+              '| `textbook.world` | practical work 4 (SDF 1.4): scene, quick solver 150 iters, '
+              'SOR 1.4, CFM 1e-5 |\n']
     return ''.join(lines)
 
 
