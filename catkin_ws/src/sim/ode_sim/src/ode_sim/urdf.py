@@ -302,7 +302,8 @@ class _Parser:
         if len(reached) != len(links):
             loop = [n for n in order if n not in reached]
             raise self.err(links[loop[0]].parent_joint.el,
-                           "the joints form a loop through link '%s'" % loop[0])
+                           "the joints form a loop through link '%s' (joint '%s')"
+                           % (loop[0], links[loop[0]].parent_joint.name))
 
         model = Model(name=self.model_name or robot_name, source=self.source)
         link_ext, joint_ext = self.parse_gazebo(root, links, joints, model)
