@@ -1,5 +1,4 @@
 """ode_sim.sdf and ode_sim.resolve: SDF 1.4-1.6 worlds and models, model:// lookup, errors."""
-import math
 import os
 import time
 
@@ -283,3 +282,17 @@ def test_bad_sdf_one_line(name, line, words):
 def test_missing_world_file():
     with pytest.raises(ModelError, match='cannot read world file'):
         load_world('/no/such.world')
+
+
+def test_include_inside_a_model_is_flattened():
+    text = '''<sdf version="1.6"><model name="cart">
+      <link name="deck"><inertial><mass>1</mass></inertial></link>
+      <include><uri>model://crate</uri><name>load</name><pose>0 0 0.5 0 0 0</pose></include>
+      <joint name="strap" type="fixed"><parent>deck</parent><child>load::body</child></joint>
+    </model></sdf>'''
+    m = parse_sdf_model(text, 'cart.sdf')
+    assert [l.name for l in m.links] == ['deck', 'load::body']
+    assert np.allclose(m.link('load::body').pose.p, [0, 0, 0.5])
+    assert m.link('load::body').visuals[0].geometry.kind == 'mesh'
+    assert m.joint('strap').child == 'load::body'
+    assert any("nested static model 'load'" in w for w in m.warnings)

@@ -14,7 +14,7 @@ import numpy as np
 from . import materials
 from .mesh import load_stl
 from .model import (Collision, Geometry, Inertial, Joint, Light, Link, Model, ModelError,
-                    Physics, Plugin, Scene, Sensor, Surface, Visual, World)
+                    Plugin, Scene, Sensor, Surface, Visual, World)
 from .resolve import ModelPaths
 from .transforms import Pose
 
