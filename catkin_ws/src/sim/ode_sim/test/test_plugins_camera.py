@@ -155,6 +155,22 @@ def test_topics_and_camera_info_as_gazebo_defaults(release):
     assert list(info.R) == [1, 0, 0, 0, 1, 0, 0, 0, 1]
 
 
+def test_models_spawned_later_show_up(release):
+    pw, ctx, p = setup(update_rate=0.0)
+    release(p)
+    one_frame(p, pw)
+    g = Geometry('box', size=(0.3, 0.3, 0.3))
+    pw.add_model(Model('green', static=True, pose=Pose((1.5, 0, CAM_Z)), links=[Link(
+        'link', visuals=[Visual('v', g, color=(0, 1, 0, 1))])]))
+    one_frame(p, pw)
+    before, after = (image_array(m)[H // 2, W // 2] for m in p.image_pub.msgs[-2:])
+    assert before[0] > 150 and before[1] < 60
+    assert after[1] > 150 and after[0] < 60
+    pw.remove_model('green')
+    one_frame(p, pw)
+    assert image_array(p.image_pub.msgs[-1])[H // 2, W // 2][0] > 150
+
+
 def test_camera_info_tags():
     pw, ctx, p = setup(tags={'cameraName': 'c', 'Cx': '30', 'Cy': '20', 'focalLength': '50',
                              'hackBaseline': '0.07', 'distortionK1': '0.1',

@@ -49,6 +49,7 @@ is done, so an update rate above what the renderer sustains yields as many frame
 """
 import concurrent.futures
 import math
+import threading
 
 import numpy as np
 import rospy
@@ -201,6 +202,20 @@ def point_cloud_message(depth, image_bytes, width, height, hfov, frame_id, stamp
     return msg
 
 
+_LOCKS_GUARD = threading.Lock()
+
+
+def _render_lock(ctx):
+    """One lock per PluginContext: held while rendering and while scenes are rebuilt."""
+    lock = getattr(ctx, 'camera_render_lock', None)
+    if lock is None:
+        with _LOCKS_GUARD:
+            lock = getattr(ctx, 'camera_render_lock', None)
+            if lock is None:
+                lock = ctx.camera_render_lock = threading.Lock()
+    return lock
+
+
 def _num(params, key, default, cast=float):
     v = params.get(key, default)
     try:
@@ -303,6 +318,7 @@ class CameraPlugin(Plugin):
         self.link_obj = self.link(sensor.link)
         self.set_rate(sensor.update_rate)
         self._last_pub = None          # sim time of the last published frame (plugin throttle)
+        self._seen_version = None
         self._renderer = None
         self._executor = None
         self._future = None
@@ -351,7 +367,13 @@ class CameraPlugin(Plugin):
         if not (want_image or want_depth or want_cloud):
             self._publish_infos(stamp, want_info, want_dinfo)
             return
-        self.ctx.refresh_renderers()
+        version = self.ctx.physics.version
+        if version != self._seen_version:
+            # models came or went: rebuild every renderer's scene, but not while another
+            # camera's worker is drawing with its (the update would free meshes in use)
+            with _render_lock(self.ctx):
+                self.ctx.refresh_renderers()
+            self._seen_version = version
         self._renderer_get()
         if self.sync:
             self._produce(*job)
@@ -377,7 +399,8 @@ class CameraPlugin(Plugin):
                 self.width, self.height, self.K, self.P, self.D, self.frame_id, stamp))
 
     def _produce(self, pose, stamp, want_image, want_info, want_depth, want_cloud, want_dinfo):
-        rgb, depth = self._renderer.render(pose)
+        with _render_lock(self.ctx):
+            rgb, depth = self._renderer.render(pose)
         if self.noise_stddev > 0 or self.noise_mean != 0:
             rgb = add_noise(rgb, self.noise_mean, self.noise_stddev, self.rng)
         data = convert_image(rgb, self.encoding)
