@@ -1,0 +1,129 @@
+"""sim_node for real: a roscore, the node on a world file, every /gazebo service driven by a
+client process; bad worlds and bad robots give one clear line."""
+import json
+import math
+import os
+import subprocess
+
+import pytest
+
+from course_testing import Proc, wait_for
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PKG = os.path.dirname(HERE)
+
+WORLD = """<?xml version="1.0"?>
+<sdf version="1.6">
+  <world name="default">
+    <include><uri>model://ground_plane</uri></include>
+    <include><uri>model://sun</uri></include>
+    {extra}
+  </world>
+</sdf>
+"""
+
+
+def call(cmd, env, timeout=60):
+    return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout)
+
+
+def write_world(tmp_path, extra='', name='w.world'):
+    path = tmp_path / name
+    path.write_text(WORLD.format(extra=extra))
+    return str(path)
+
+
+def sim(roscore, world, tmp_path, *args):
+    subprocess.run(['rosparam', 'set', '/use_sim_time', 'true'], env=roscore.env, check=True,
+                   timeout=15)
+    return Proc(['rosrun', 'ode_sim', 'sim_node', world] + list(args), env=roscore.env,
+                log=str(tmp_path / 'sim.log'))
+
+
+def test_every_gazebo_service(roscore, tmp_path):
+    world = write_world(tmp_path)
+    node = sim(roscore, world, tmp_path, '-u')
+    try:
+        cone = os.path.join(PKG, 'models', 'traffic_cone', 'model.sdf')
+        res = call(['python3', os.path.join(HERE, 'sim_client.py'), 'api', cone], roscore.env, 120)
+        assert res.returncode == 0, res.stdout + res.stderr + node.output()
+        out = json.loads(res.stdout.strip().splitlines()[-1])
+    finally:
+        node.stop()
+    log = node.output()
+    assert out['paused_still'], 'time ran while started with -u'
+    assert out['spawn'] == [True, 'SpawnModel: Successfully spawned entity']
+    assert out['spawn_dup'] == [False, 'SpawnModel: Failure - entity already exists.']
+    ok, msg = out['spawn_zero_mass']
+    assert not ok and "link 'arm'" in msg and 'mass' in msg, msg
+    ok, msg = out['spawn_broken']
+    assert not ok and 'malformed XML' in msg, msg
+    assert out['spawn_sdf'][0], out['spawn_sdf']
+    assert out['spawn_rel'][0] and out['spawn_rel'][1][:2] == pytest.approx([-2, 1], abs=1e-3)
+    assert out['arm_paused']['xyz'] == pytest.approx([1, 2, 0.1], abs=1e-6)
+    assert set(out['world']) == {'ground_plane', 'arm', 'cone', 'cone_rel'}
+    assert out['props'] == [['base', 'arm'], ['shoulder'], False]
+    assert out['running']
+    assert out['rtf'] == pytest.approx(1.0, abs=0.15)       # 0.001 s x 1000 Hz
+    assert out['arm_settled']['xyz'][2] == pytest.approx(0.1, abs=0.01)   # rests on the ground
+    assert out['relative']['xyz'][:2] == pytest.approx([3, 2], abs=0.02)  # arm seen from cone
+    assert {'ground_plane', 'arm', 'cone'} <= set(out['model_states'])
+    assert {'arm::base', 'arm::arm', 'cone::link'} <= set(out['link_states'])
+    assert out['config'][0], out['config']
+    qz, qw = out['arm_link_q'][2:]
+    assert 2 * math.atan2(qz, qw) == pytest.approx(1.0, abs=0.02)
+    assert out['config_bad'][0] is False and "no joint 'elbow'" in out['config_bad'][1]
+    assert out['set_state'][0] and out['set_state'][1] == pytest.approx([4, -1, 0.1], abs=0.01)
+    assert out['set_state_ghost'][0] is False and 'ghost' in out['set_state_ghost'][1]
+    assert out['set_state_topic'][:2] == pytest.approx([-3, 0], abs=0.05)
+    assert out['wrench'] and out['pushed'][1] > 0.05
+    assert out['physics'][:3] == pytest.approx([0.001, 1000, -9.8])
+    assert out['rtf_fast'] > 2.0, 'max_update_rate 0 should run faster than real time'
+    assert out['reset_world'][0] == pytest.approx([1, 2, 0.1], abs=0.01) and out['reset_world'][1]
+    assert out['reset_sim_time'] < 0.5
+    assert out['paused_again']
+    assert out['delete'] == [True, False]
+    assert out['delete_again'][0] is False and 'does not exist' in out['delete_again'][1]
+    assert "link 'arm'" in log           # the refused robot is named in the node's log
+
+
+@pytest.mark.parametrize('extra, expect', [
+    ('<model name="m"><link name="l"><collision name="c"><geometry><box>'
+     '<size>1 1</size></box></geometry></collision></link>', 'malformed XML'),
+    ('<include><uri>model://no_such_model</uri></include>', 'no_such_model'),
+    ('<model name="m"><link name="l"><inertial><mass>1</mass></inertial><collision name="c">'
+     '<geometry><mesh><uri>file:///nonexistent/thing.stl</uri></mesh></geometry></collision>'
+     '</link></model>', 'thing.stl'),
+])
+def test_bad_world_exits_with_one_line(roscore, tmp_path, extra, expect):
+    world = write_world(tmp_path, extra)
+    res = call(['rosrun', 'ode_sim', 'sim_node', world], roscore.env, 60)
+    assert res.returncode == 1
+    lines = [l for l in res.stderr.splitlines() if l.startswith('sim_node: error:')]
+    assert len(lines) == 1 and expect in lines[0], res.stderr
+    assert 'Traceback' not in res.stderr
+
+
+def test_missing_world_file(roscore, tmp_path):
+    res = call(['rosrun', 'ode_sim', 'sim_node', 'worlds/nonexistent.world'], roscore.env, 60)
+    assert res.returncode == 1 and 'nonexistent.world' in res.stderr
+    assert 'Traceback' not in res.stderr
+
+
+def test_unknown_plugin_warns_and_the_world_runs(roscore, tmp_path):
+    extra = ('<model name="m"><pose>0 0 1 0 0 0</pose><link name="l"><inertial><mass>1</mass>'
+             '</inertial><collision name="c"><geometry><sphere><radius>0.1</radius></sphere>'
+             '</geometry></collision></link>'
+             '<plugin name="p" filename="libgazebo_ros_teleporter.so"/></model>')
+    world = write_world(tmp_path, extra)
+    node = sim(roscore, world, tmp_path)
+    try:
+        wait_for(lambda: 'libgazebo_ros_teleporter.so' in node.output(), 30, 0.2,
+                 'the unknown-plugin warning')
+        res = call(['rosservice', 'call', '/gazebo/get_model_state', 'm', ''], roscore.env, 30)
+        assert 'success: True' in res.stdout
+    finally:
+        node.stop()
+    log = node.output()
+    assert "unknown plugin 'libgazebo_ros_teleporter.so'" in log
+    assert 'libgazebo_ros_diff_drive.so' in log          # the known ones are listed
