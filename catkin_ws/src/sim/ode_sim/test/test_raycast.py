@@ -237,9 +237,7 @@ def _ode_geom(ode, s):
     return geom
 
 
-def test_agrees_with_ode_ray_geom():
-    ode = pytest.importorskip('ode')
-    rng = np.random.default_rng(7)
+def _ode_scene():
     v_ball, f_ball = box_mesh((1.2, 0.6, 0.9))
     v_crate, f_crate = box_mesh((0.8, 0.5, 0.4))
     shapes = [box('b1', (1.0, 0.4, 0.7), (2.0, 0.5, 0.1), (0.3, 0.2, 0.9)),
@@ -254,18 +252,88 @@ def test_agrees_with_ode_ray_geom():
               shape('m2', Geometry('mesh', vertices=v_crate, faces=f_crate),
                     link_pose=lambda: Pose.from_xyz_rpy((0.0, -2.5, 0.0), (0, 0.3, 1.0))),
               shape('ground', Geometry('plane', normal=(0, 0, 1)), Pose((0, 0, -0.6)))]
-    rc = RayCaster(shapes)
+    return shapes
+
+
+def _check_against_ode(ode, rc, shapes, origins, dirs, max_range, min_range=0.0):
+    """Our distances vs ODE rays that start at min_range (as Gazebo's do)."""
     geoms = [_ode_geom(ode, s) for s in shapes]
+    ours = rc.cast(origins, dirs, max_range, min_range=min_range)
+    starts = np.broadcast_to(origins, dirs.shape) + min_range * dirs
+    theirs = min_range + np.array([_ode_distance(ode, geoms, o, d, max_range - min_range)
+                                   for o, d in zip(starts, dirs)])
+    hit = np.isfinite(theirs)
+    np.testing.assert_array_equal(np.isfinite(ours), hit)
+    np.testing.assert_allclose(ours[hit], theirs[hit], atol=1e-6, rtol=0)
+    return hit
+
+
+def test_agrees_with_ode_ray_geom():
+    """Rays with their own origins (the BVH walk and the dense tests)."""
+    ode = pytest.importorskip('ode')
+    rng = np.random.default_rng(7)
+    shapes = _ode_scene()
+    rc = RayCaster(shapes)
     n = 80
     origins = rng.uniform(-0.4, 0.4, (n, 3))
     dirs = rng.normal(size=(n, 3))
     dirs[:, 2] *= 0.5                       # mostly sideways, like a lidar, some to the floor
     dirs /= np.linalg.norm(dirs, axis=1)[:, None]
-    ours = rc.cast(origins, dirs, 6.0)
-    theirs = np.array([_ode_distance(ode, geoms, o, d, 6.0) for o, d in zip(origins, dirs)])
-    hit = np.isfinite(theirs)
+    hit = _check_against_ode(ode, rc, shapes, origins, dirs, 6.0)
     assert hit.sum() >= 40                  # the test exercises real hits
     kinds = {shapes[k].geometry.kind for k in rc.cast_hits(origins, dirs, 6.0)[1] if k >= 0}
     assert kinds == {'box', 'sphere', 'cylinder', 'mesh', 'plane'}
-    np.testing.assert_array_equal(np.isfinite(ours), hit)
-    np.testing.assert_allclose(ours[hit], theirs[hit], atol=1e-6, rtol=0)
+    hit = _check_against_ode(ode, rc, shapes, origins, dirs, 6.0, min_range=0.35)
+    assert hit.sum() >= 40
+
+
+@pytest.mark.parametrize('origin', [(0.1, -0.2, 0.05), (2.0, 0.5, 0.1), (-1.0, 2.0, 0.4)])
+def test_agrees_with_ode_for_a_scan_from_one_origin(origin):
+    """A lidar-like fan from one origin (the azimuth-culled path), some origins inside
+    shapes, with and without a minimum range."""
+    ode = pytest.importorskip('ode')
+    shapes = _ode_scene()
+    rc = RayCaster(shapes)
+    yaw = np.linspace(-math.pi, math.pi, 181)
+    pitch = np.repeat([-0.3, 0.0, 0.2], len(yaw))
+    yaw = np.tile(yaw, 3)
+    dirs = np.stack([np.cos(pitch) * np.cos(yaw), np.cos(pitch) * np.sin(yaw), np.sin(pitch)],
+                    axis=1)
+    for min_range in (0.0, 0.12, 0.5):
+        hit = _check_against_ode(ode, rc, shapes, np.array(origin), dirs, 5.0, min_range)
+        assert hit.sum() >= 150
+
+
+def test_one_origin_path_equals_the_per_ray_path_on_a_dense_scan():
+    """The azimuth culling must not lose rays: a 0.1 degree fan (axis-aligned boxes, whose
+    bounds are exact, boxes across the +-pi direction and under the origin, meshes) gives
+    the same hits as the per-ray BVH walk and dense tests."""
+    rng = np.random.default_rng(3)
+    v, f = uv_sphere(0.4, 8, 16)
+    shapes = [box('floor', (6, 6, 0.1), (0, 0, -0.3)),
+              box('behind', (0.3, 2.0, 1.0), (-2.0, 0.0, 0.0)),
+              box('corner', (0.5, 0.5, 1.0), (-1.5, -1.5, 0.0), (0, 0, 0.3))]
+    for i in range(12):
+        xyz = rng.uniform(-3, 3, 3) * (1, 1, 0.1)
+        if np.linalg.norm(xyz[:2]) < 0.7:
+            continue
+        if i % 3 == 0:
+            shapes.append(box('b%d' % i, rng.uniform(0.1, 0.8, 3), xyz))
+        elif i % 3 == 1:
+            shapes.append(shape('c%d' % i, Geometry('cylinder', radius=0.2, length=0.8),
+                                Pose(xyz)))
+        else:
+            shapes.append(shape('m%d' % i, Geometry('mesh', vertices=v, faces=f), Pose(xyz)))
+    rc = RayCaster(shapes)
+    yaw = np.tile(np.linspace(-math.pi, math.pi, 3601), 3)
+    pitch = np.repeat([-0.05, 0.0, 0.1], 3601)
+    dirs = np.stack([np.cos(pitch) * np.cos(yaw), np.cos(pitch) * np.sin(yaw), np.sin(pitch)],
+                    axis=1)
+    c = np.array([0.05, -0.02, 0.1])
+    fan_t, fan_k = rc.cast_hits(c, dirs, 4.0, min_range=0.1)
+    origins = np.tile(c, (len(dirs), 1))
+    origins[-1, 0] += 1e-9                  # not one origin: the per-ray path
+    ray_t, ray_k = rc.cast_hits(origins, dirs, 4.0, min_range=0.1)
+    assert np.isfinite(fan_t).sum() > 4000
+    np.testing.assert_array_equal(fan_k[:-1], ray_k[:-1])
+    np.testing.assert_allclose(fan_t[:-1], ray_t[:-1], atol=1e-9, rtol=0)

@@ -223,15 +223,17 @@ class LaserModel:
         """Cast the rays from the sensor's world pose (a transforms.Pose) the way Gazebo does
         (starting at range_min) and return (ranges, intensities) as published."""
         dirs = sensor_pose.rotate(self.directions)
-        origins = sensor_pose.p + dirs * self.range_min
-        dist, who = caster.cast_hits(origins, dirs, self.range_max - self.range_min, exclude)
+        # one origin, surfaces before range_min ignored: the same hits as rays starting at
+        # range_min (ODE reports the first surface crossing after a ray's start)
+        dist, who = caster.cast_hits(sensor_pose.p, dirs, self.range_max, exclude,
+                                     min_range=self.range_min)
         retro = np.zeros(len(dist))
         hit = who >= 0
         if hit.any():
             table = np.array([float(getattr(s, 'laser_retro', 0.0) or 0.0)
                               for s in caster.shapes])
             retro[hit] = table[who[hit]]
-        return self.to_ranges(self.range_min + dist, retro)
+        return self.to_ranges(dist, retro)
 
     def to_ranges(self, distances, retro=None):
         """Raw hit distances from the sensor origin, one per ray in `directions` order
