@@ -1,0 +1,391 @@
+"""libgazebo_ros_control.so: the simulator side of the ros_control bridge.
+
+In Gazebo the plugin runs controller_manager inside gzserver. Here the controllers run in a C++
+node of their own (a RobotHW talking to the simulator); this plugin is the simulator's half of
+the contract documented in doc/ros_control_bridge.md:
+
+- per robot namespace NS it publishes `NS/ode_sim/joint_states` (sensor_msgs/JointState of every
+  transmission joint, once per control period, stamped with the sim time at the start of the
+  period) and subscribes `NS/ode_sim/joint_commands` (sensor_msgs/JointState: the command of a
+  joint in the array of its interface - position[], velocity[] or effort[]; NaN or a missing
+  name keeps the previous command; header.stamp = the stamp of the state it answers);
+- sets `NS/ode_sim/joints` (name, interface, lower, upper, effort, velocity, reduction per
+  joint) and `NS/ode_sim/control_period` when it loads;
+- applies the commands before every physics step as gazebo_ros_control's DefaultRobotHWSim does:
+  effort -> joint effort; velocity -> PID on effort when NS/gazebo_ros_control/pid_gains/JOINT/p
+  exists, else the joint motor at that velocity with at most the effort limit; position -> PID,
+  else the joint motor servoing to it; URDF limits clamp the commands;
+- eStopTopic (std_msgs/Bool): true zeroes efforts and velocities and holds positions;
+- lockstep (ctx.lockstep): at each period boundary, after publishing the state of time t_k, the
+  simulation waits (wall clock) for a command stamped >= t_k while a publisher is connected to
+  joint_commands; after `NS/ode_sim/lockstep_timeout` (1.0 s) it warns once and steps on until
+  commands flow again.
+
+Tags as gazebo_ros_control (noetic): robotNamespace (model name), robotParam
+(robot_description; the transmissions come with the model here), robotSimType (only
+gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none).
+"""
+import math
+import threading
+import time
+
+import rospy
+
+from .base import Plugin
+from .state import close, publisher, ros_up, subscriber
+
+EFFORT = 'EffortJointInterface'
+VELOCITY = 'VelocityJointInterface'
+POSITION = 'PositionJointInterface'
+STATE = 'JointStateInterface'
+COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
+DEFAULT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
+DEFAULT_LOCKSTEP_TIMEOUT = 1.0
+
+
+def bare_interface(name):
+    return name.strip().rsplit('/', 1)[-1]
+
+
+def clamp(v, lo, hi):
+    if lo is not None and v < lo:
+        return lo
+    if hi is not None and v > hi:
+        return hi
+    return v
+
+
+def shortest_angular_distance(a, b):
+    """b - a wrapped to [-pi, pi]."""
+    d = math.fmod(b - a + math.pi, 2 * math.pi)
+    if d < 0:
+        d += 2 * math.pi
+    return d - math.pi
+
+
+class Pid:
+    """control_toolbox::Pid as used by DefaultRobotHWSim: p, i, d, i_clamp (the integral term
+    is limited to [-|i_clamp|, |i_clamp|]; i_clamp_min / i_clamp_max override), d on the error."""
+
+    def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0, i_clamp_min=None, i_clamp_max=None):
+        self.p, self.i, self.d = float(p), float(i), float(d)
+        self.i_max = abs(float(i_clamp)) if i_clamp_max is None else abs(float(i_clamp_max))
+        self.i_min = -abs(float(i_clamp)) if i_clamp_min is None else -abs(float(i_clamp_min))
+        self.reset()
+
+    def reset(self):
+        self.i_error = 0.0
+        self.last_error = 0.0
+
+    def compute(self, error, dt):
+        if dt <= 0 or not math.isfinite(error):
+            return 0.0
+        self.i_error += dt * error
+        i_term = clamp(self.i * self.i_error, self.i_min, self.i_max)
+        d_term = self.d * (error - self.last_error) / dt
+        self.last_error = error
+        return self.p * error + i_term + d_term
+
+
+class BridgeJoint:
+    """One transmission joint: the sim joint, its interface, limits, PID and command."""
+
+    def __init__(self, joint, interface, reduction):
+        self.name = joint.name
+        self.joint = joint
+        self.interface = interface          # one of COMMAND_INTERFACES, or STATE
+        self.reduction = reduction
+        d = joint.desc
+        limited = joint.type in ('revolute', 'prismatic')
+        self.lower = d.lower if limited and d.lower is not None and d.upper is not None \
+            and d.upper >= d.lower else None
+        self.upper = d.upper if self.lower is not None else None
+        self.effort = joint.limit_effort
+        self.velocity = joint.limit_velocity
+        self.pid = None
+        self.command = 0.0
+        self.hold = None                    # position held while the e-stop is active
+
+    def description(self):
+        """The entry of NS/ode_sim/joints (limits only where the URDF has them)."""
+        out = {'name': self.name, 'interface': self.interface, 'reduction': float(self.reduction)}
+        if self.lower is not None:
+            out['lower'] = float(self.lower)
+            out['upper'] = float(self.upper)
+        if self.effort is not None:
+            out['effort'] = float(self.effort)
+        if self.velocity is not None:
+            out['velocity'] = float(self.velocity)
+        return out
+
+
+class GazeboRosControl(Plugin):
+    """libgazebo_ros_control.so"""
+
+    def __init__(self, ctx, model, desc, sensor=None):
+        super().__init__(ctx, model, desc, sensor)
+        self.robot_param = self.param('robotParam', 'robot_description', warn=False)
+        sim_type = self.param('robotSimType', DEFAULT_SIM_TYPE, warn=False).strip()
+        if sim_type != DEFAULT_SIM_TYPE:
+            rospy.logwarn("gazebo_ros_control: robotSimType '%s' is not available in ode_sim; "
+                          "using %s" % (sim_type, DEFAULT_SIM_TYPE))
+        dt = ctx.physics.dt
+        if self.has('controlPeriod'):
+            period = self.param('controlPeriod', dt, float)
+            if period < dt - 1e-12:
+                rospy.logerr("Desired controller update period (%g s) is faster than the gazebo "
+                             "simulation period (%g s)." % (period, dt))
+            elif period > dt + 1e-12:
+                rospy.logwarn("Desired controller update period (%g s) is slower than the gazebo "
+                              "simulation period (%g s)." % (period, dt))
+            self.control_period = max(period, dt)
+        else:
+            self.control_period = dt
+        self.estop_topic = self.param('eStopTopic', '', warn=False).strip()
+        self.joints = self._joints_from_transmissions()
+        self.by_name = {j.name: j for j in self.joints}
+        self.lockstep_timeout = DEFAULT_LOCKSTEP_TIMEOUT
+        self.estop = False
+        self._cond = threading.Condition()
+        self._cmd_stamp = -1                # newest command stamp (ns)
+        self._state_stamp = 0               # stamp of the newest published state (ns)
+        self._last_period = None            # sim time of the last period boundary
+        self._stalled = False
+        self._closing = False
+        self._warned = set()
+        # lockstep counters: boundaries whose command arrived in time (at once or after a wait),
+        # that had to wait, that timed out
+        self.synced = 0
+        self.waits = 0
+        self.timeouts = 0
+        self._init_commands()
+
+        from sensor_msgs.msg import JointState
+        self.state_topic = self.topic('ode_sim/joint_states')
+        self.command_topic = self.topic('ode_sim/joint_commands')
+        self.state_pub = publisher(self.state_topic, JointState, queue_size=10)
+        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10)
+        self.estop_sub = None
+        if self.estop_topic:
+            from std_msgs.msg import Bool
+            self.estop_sub = subscriber(self.topic(self.estop_topic), Bool, self.on_estop)
+        if ros_up():
+            self._load_ros_params()
+        if not self.joints:
+            rospy.logwarn("gazebo_ros_control: model '%s' has no <transmission>: nothing to "
+                          "control" % model.name)
+        rospy.loginfo("Starting gazebo_ros_control plugin in namespace: %s" % (self.ns or '/'))
+
+    # ------------------------------------------------------------------ setup
+    def _joints_from_transmissions(self):
+        out = []
+        seen = set()
+        for t in self.model.desc.transmissions:
+            if not t.joints:
+                rospy.logwarn("Transmission %s has no associated joints." % t.name)
+                continue
+            if not t.actuators:
+                rospy.logwarn("Transmission %s has no associated actuators." % t.name)
+                continue
+            if len(t.joints) > 1:
+                rospy.logwarn("Transmission %s has more than one joint. Currently the default "
+                              "robot hardware simulation interface only supports one." % t.name)
+                continue
+            jname, interfaces = next(iter(t.joints.items()))
+            if jname not in self.model.joints:
+                raise self.error('This robot has a joint named "%s" which is not in the gazebo '
+                                 'model.' % jname)
+            if not interfaces:
+                raise self.error('joint "%s" of transmission %s has no <hardwareInterface>'
+                                 % (jname, t.name))
+            if len(interfaces) > 1:
+                rospy.logwarn("Joint %s of transmission %s specifies multiple hardware interfaces. "
+                              "Currently the default robot hardware simulation interface only "
+                              "supports one. Using the first entry" % (jname, t.name))
+            iface = bare_interface(interfaces[0])
+            if iface not in COMMAND_INTERFACES + (STATE,):
+                raise self.error("No matching hardware interface found for '%s' while loading "
+                                 "interfaces for %s" % (interfaces[0], jname))
+            if jname in seen:
+                continue
+            seen.add(jname)
+            reduction = float(next(iter(t.actuators.values()))) if t.actuators else 1.0
+            out.append(BridgeJoint(self.model.joints[jname], iface, reduction))
+        return out
+
+    def _init_commands(self):
+        for j in self.joints:
+            j.command = j.joint.position() if j.interface == POSITION else 0.0
+            j.hold = None
+            if j.pid is not None:
+                j.pid.reset()
+
+    def _load_ros_params(self):
+        rospy.set_param(self.topic('ode_sim/joints'), [j.description() for j in self.joints])
+        rospy.set_param(self.topic('ode_sim/control_period'), float(self.control_period))
+        self.lockstep_timeout = float(rospy.get_param(self.topic('ode_sim/lockstep_timeout'),
+                                                      DEFAULT_LOCKSTEP_TIMEOUT))
+        for j in self.joints:
+            if j.interface not in (VELOCITY, POSITION):
+                continue
+            ns = self.topic('gazebo_ros_control/pid_gains/' + j.name)
+            gains = rospy.get_param(ns, None)
+            if isinstance(gains, dict) and 'p' in gains:
+                try:
+                    self.set_pid_gains(j.name, **{k: float(v) for k, v in gains.items()
+                                                  if k in ('p', 'i', 'd', 'i_clamp',
+                                                           'i_clamp_min', 'i_clamp_max')})
+                except (TypeError, ValueError):
+                    raise self.error("%s: PID gains must be numbers, got %r" % (ns, gains))
+            else:
+                rospy.logerr("No p gain specified for pid.  Namespace: %s" % ns)
+
+    def set_pid_gains(self, joint, p, i=0.0, d=0.0, i_clamp=0.0, i_clamp_min=None,
+                      i_clamp_max=None):
+        """Drive a velocity/position joint through a PID on effort (None removes it)."""
+        self.by_name[joint].pid = None if p is None else Pid(p, i, d, i_clamp, i_clamp_min,
+                                                             i_clamp_max)
+
+    # ------------------------------------------------------------------ ROS callbacks
+    def on_command(self, msg):
+        stamp = msg.header.stamp.to_nsec()
+        with self._cond:
+            for k, name in enumerate(msg.name):
+                j = self.by_name.get(name)
+                if j is None or j.interface == STATE:
+                    self._warn_once(name, "ode_sim: %s: joint '%s' takes no commands (not a "
+                                    "command joint of a <transmission>); ignored"
+                                    % (self.command_topic, name))
+                    continue
+                values = msg.effort if j.interface == EFFORT else \
+                    msg.velocity if j.interface == VELOCITY else msg.position
+                if k < len(values):
+                    v = float(values[k])
+                    if not math.isnan(v):
+                        j.command = v
+            if stamp == 0:
+                stamp = self._state_stamp       # unstamped: answers the newest state
+            self._cmd_stamp = max(self._cmd_stamp, stamp)
+            self._stalled = False
+            self._cond.notify_all()
+
+    def on_estop(self, msg):
+        self.estop = bool(msg.data)
+
+    def _warn_once(self, key, text):
+        if key not in self._warned:
+            self._warned.add(key)
+            rospy.logwarn(text)
+
+    # ------------------------------------------------------------------ state
+    def state_msg(self, stamp=None):
+        from sensor_msgs.msg import JointState
+        msg = JointState()
+        msg.header.stamp = stamp if stamp is not None else self.ctx.now()
+        msg.name = [j.name for j in self.joints]
+        msg.position = [float(j.joint.position()) for j in self.joints]
+        msg.velocity = [float(j.joint.velocity()) for j in self.joints]
+        msg.effort = [float(j.joint.effort()) for j in self.joints]
+        return msg
+
+    def _connected(self):
+        sub = self.cmd_sub
+        return sub is not None and sub.get_num_connections() > 0
+
+    # ------------------------------------------------------------------ stepping
+    def before_step(self):
+        t = self.ctx.time
+        last = self._last_period
+        if last is None or t < last or t - last >= self.control_period - 1e-9:
+            self._last_period = t
+            stamp = self.ctx.now()
+            with self._cond:
+                self._state_stamp = stamp.to_nsec()
+            self.state_pub.publish(self.state_msg(stamp))
+            if self.ctx.lockstep:
+                self._wait_for(stamp)
+        self.apply(self.ctx.physics.dt)
+
+    def _wait_for(self, stamp):
+        if not self._connected():
+            return
+        want = stamp.to_nsec()
+        with self._cond:
+            if self._stalled:
+                return
+            if self._cmd_stamp >= want:
+                self.synced += 1
+                return
+            self.waits += 1
+            deadline = time.monotonic() + self.lockstep_timeout
+            while self._cmd_stamp < want and not self._closing:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    self._stalled = True
+                    self.timeouts += 1
+                    rospy.logwarn("ode_sim: lockstep: no joint command for t=%.3f from %s within "
+                                  "%.1f s; stepping on with the last command"
+                                  % (stamp.to_sec(), self.command_topic, self.lockstep_timeout))
+                    return
+                self._cond.wait(left)
+            if self._cmd_stamp >= want:
+                self.synced += 1
+
+    def apply(self, dt):
+        """Write the commands to the joints (every physics step, as writeSim)."""
+        estop = self.estop
+        for j in self.joints:
+            iface = j.interface
+            if iface == STATE:
+                continue
+            sj = j.joint
+            if estop:
+                if j.hold is None:
+                    j.hold = sj.position()
+            else:
+                j.hold = None
+            cmd = j.command
+            if iface == EFFORT:
+                sj.set_effort(0.0 if estop else clamp(cmd, _neg(j.effort), j.effort))
+            elif iface == VELOCITY:
+                v = 0.0 if estop else clamp(cmd, _neg(j.velocity), j.velocity)
+                if j.pid is not None:
+                    effort = j.pid.compute(v - sj.velocity(), dt)
+                    sj.set_effort(clamp(effort, _neg(j.effort), j.effort))
+                else:
+                    sj.set_velocity(v, fmax=j.effort)
+            else:
+                p = j.hold if estop else clamp(cmd, j.lower, j.upper)
+                if j.pid is not None:
+                    if sj.type == 'continuous':
+                        err = shortest_angular_distance(sj.position(), p)
+                    else:
+                        err = p - sj.position()
+                    effort = j.pid.compute(err, dt)
+                    sj.set_effort(clamp(effort, _neg(j.effort), j.effort))
+                else:
+                    sj.set_position_target(p)
+
+    def reset(self):
+        super().reset()
+        with self._cond:
+            self._init_commands()
+            self._cmd_stamp = -1
+            self._state_stamp = 0
+            self._last_period = None
+            self._stalled = False
+
+    def shutdown(self):
+        with self._cond:
+            self._closing = True
+            self._cond.notify_all()
+        close(self.state_pub, self.cmd_sub, self.estop_sub)
+
+
+def _neg(v):
+    return None if v is None else -v
+
+
+PLUGINS = {
+    'libgazebo_ros_control.so': GazeboRosControl,
+}
