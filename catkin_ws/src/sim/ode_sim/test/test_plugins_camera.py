@@ -171,6 +171,25 @@ def test_models_spawned_later_show_up(release):
     assert image_array(p.image_pub.msgs[-1])[H // 2, W // 2][0] > 150
 
 
+def test_image_orientation_left_is_plus_y_up_is_plus_z(release):
+    pw, ctx, p = setup(update_rate=0.0)
+    release(p)
+    g = Geometry('box', size=(0.2, 0.2, 0.2))
+    # green: left of the axis (+Y in the camera frame); blue: above it (+Z)
+    for name, xyz, color in (('g', (2.0, 0.6, CAM_Z), (0, 1, 0, 1)),
+                             ('b', (2.0, 0, CAM_Z + 0.6), (0, 0, 1, 1))):
+        pw.add_model(Model(name, static=True, pose=Pose(xyz), links=[Link(
+            'link', visuals=[Visual('v', g, color=color)])]))
+    one_frame(p, pw)
+    img = image_array(p.image_pub.msgs[-1]).astype(int)
+    green = (img[:, :, 1] > 150) & (img[:, :, 0] < 60)
+    blue = (img[:, :, 2] > 150) & (img[:, :, 0] < 60)
+    rows, cols = np.nonzero(green)
+    assert green.sum() > 4 and cols.max() < W / 2 and abs(rows.mean() - (H - 1) / 2) < 2
+    rows, cols = np.nonzero(blue)
+    assert blue.sum() > 4 and rows.max() < H / 2 and abs(cols.mean() - (W - 1) / 2) < 2
+
+
 def test_camera_info_tags():
     pw, ctx, p = setup(tags={'cameraName': 'c', 'Cx': '30', 'Cy': '20', 'focalLength': '50',
                              'hackBaseline': '0.07', 'distortionK1': '0.1',
