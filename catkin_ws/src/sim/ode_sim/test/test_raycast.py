@@ -337,3 +337,38 @@ def test_one_origin_path_equals_the_per_ray_path_on_a_dense_scan():
     assert np.isfinite(fan_t).sum() > 4000
     np.testing.assert_array_equal(fan_k[:-1], ray_k[:-1])
     np.testing.assert_allclose(fan_t[:-1], ray_t[:-1], atol=1e-9, rtol=0)
+
+
+def test_shapes_of_one_moving_link_follow_it():
+    """Shapes sharing a link (its bound pose method, as the physics hands them out) are posed
+    from one call per cast, each with its own local offset and rotation."""
+    class Link:
+        pose_now = Pose.from_xyz_rpy((2, 0, 0), (0, 0, 0))
+        calls = 0
+
+        def pose(self):
+            Link.calls += 1
+            return Link.pose_now
+
+    link = Link()
+    v, f = box_mesh((0.2, 0.2, 0.2))
+    shapes = [shape('a', Geometry('box', size=(0.2, 0.2, 0.2)), link_pose=link.pose,
+                    local=Pose((0, 1, 0)), model='bot', link='base'),
+              shape('b', Geometry('cylinder', radius=0.1, length=0.4), link_pose=link.pose,
+                    local=Pose.from_xyz_rpy((0, -1, 0), (math.pi / 2, 0, 0)),
+                    model='bot', link='base'),
+              shape('c', Geometry('sphere', radius=0.1), link_pose=link.pose,
+                    local=Pose((1, 0, 0)), model='bot', link='base'),
+              shape('d', Geometry('mesh', vertices=v, faces=f), link_pose=link.pose,
+                    local=Pose((0, 0, 1)), model='bot', link='base')]
+    rc = RayCaster(shapes)
+    Link.pose_now = Pose.from_xyz_rpy((0, 0, 0), (0, 0, math.pi / 2))   # turned left
+    Link.calls = 0
+    d = rc.cast(np.zeros(3), RING, 10.0)
+    # local +Y box is now at world -X, the lying cylinder (local -Y, axis along local -Y) lies
+    # along world X at x = 1, the sphere (local +X) is at world +Y
+    np.testing.assert_allclose(d, [0.8, 0.9, 0.9, np.inf], atol=1e-12)
+    assert Link.calls <= 2                  # once per cast per group (solids, mesh)
+    Link.pose_now = Pose((0, 0, 5))
+    d = rc.cast([0, 0, 6], RING, 10.0)      # inside the mesh box (local z = 1): leaves at 0.1
+    np.testing.assert_allclose(d, [0.1, 0.1, 0.1, 0.1], atol=1e-12)

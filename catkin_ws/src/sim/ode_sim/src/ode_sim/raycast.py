@@ -74,6 +74,22 @@ def _as_rays(origins, directions):
     return o, np.ascontiguousarray(d), common
 
 
+def _quat_matrices(q):
+    """Rotation matrices (K, 3, 3) of unit quaternions (K, 4) x, y, z, w."""
+    x, y, z, w = q[:, 0], q[:, 1], q[:, 2], q[:, 3]
+    m = np.empty((len(q), 3, 3))
+    m[:, 0, 0] = 1 - 2 * (y * y + z * z)
+    m[:, 0, 1] = 2 * (x * y - z * w)
+    m[:, 0, 2] = 2 * (x * z + y * w)
+    m[:, 1, 0] = 2 * (x * y + z * w)
+    m[:, 1, 1] = 1 - 2 * (x * x + z * z)
+    m[:, 1, 2] = 2 * (y * z - x * w)
+    m[:, 2, 0] = 2 * (x * z - y * w)
+    m[:, 2, 1] = 2 * (y * z + x * w)
+    m[:, 2, 2] = 1 - 2 * (x * x + y * y)
+    return m
+
+
 def _pose_arrays(shapes):
     """World rotation matrices (K, 3, 3) and positions (K, 3) of shapes."""
     k = len(shapes)
@@ -84,6 +100,38 @@ def _pose_arrays(shapes):
         rot[i] = pose.rotation()
         pos[i] = pose.p
     return rot, pos
+
+
+class _Posing:
+    """World poses of dynamic shapes, fast: each distinct link_pose callable (equal bound
+    methods count as one) is called once per cast and composed with the shapes' fixed local
+    poses in one batch."""
+
+    def __init__(self, shapes):
+        slot = {}
+        self.calls = []
+        idx = []
+        for s in shapes:
+            key = s.link_pose                       # bound methods of one link compare equal
+            try:
+                hash(key)
+            except TypeError:
+                key = ('id', id(key))
+            if key not in slot:
+                slot[key] = len(self.calls)
+                self.calls.append(s.link_pose)
+            idx.append(slot[key])
+        self.idx = np.array(idx, dtype=np.int64)
+        self.local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
+        self.local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
+
+    def __call__(self):
+        poses = [f() for f in self.calls]
+        lrot = _quat_matrices(np.array([p.q for p in poses]))[self.idx]
+        lpos = np.array([p.p for p in poses])[self.idx]
+        rot = np.matmul(lrot, self.local_rot)
+        pos = lpos + np.einsum('kij,kj->ki', lrot, self.local_pos)
+        return rot, pos
 
 
 def _reduce_hits(t, ok):
@@ -523,9 +571,11 @@ class _Group:
             self.local_normal = n / norm[:, None]
         if self.static:
             self._posed = self._pose()
+        else:
+            self._posing = _Posing(self.shapes)
 
     def _pose(self):
-        rot, pos = _pose_arrays(self.shapes)
+        rot, pos = _pose_arrays(self.shapes) if self.static else self._posing()
         if self.kind == 'plane':
             n = np.einsum('kij,kj->ki', rot, self.local_normal)
             return n, np.einsum('ki,ki->k', n, pos)
@@ -577,6 +627,7 @@ class _Items:
         self.p1_soa = [np.ascontiguousarray(p1[:, i]) for i in range(3)]
         self._static = self._posed(*_pose_arrays([s for _, s in items[:self.nstatic]]),
                                    slice(0, self.nstatic))
+        self._posing = _Posing(self.dynamic) if self.dynamic else None
 
     def _posed(self, rot, pos, part):
         """Rotation (K, 3, 3), position (K, 3) and world bounds (K, 3) x 2 of a part."""
@@ -596,7 +647,7 @@ class _Items:
         if not self.dynamic:
             rot, pos, lo, hi = self._static
         else:
-            dyn = self._posed(*_pose_arrays(self.dynamic), slice(self.nstatic, None))
+            dyn = self._posed(*self._posing(), slice(self.nstatic, None))
             rot, pos, lo, hi = (np.concatenate([a, b]) for a, b in zip(self._static, dyn))
         return rot, pos, [lo[:, i] for i in range(3)], [hi[:, i] for i in range(3)]
 
