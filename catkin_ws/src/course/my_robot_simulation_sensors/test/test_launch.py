@@ -19,14 +19,16 @@ def test_robot_sim_camera_launch(roscore, tmp_path):
         assert scan['range_min'] == pytest.approx(0.03) and scan['range_max'] == pytest.approx(3.0)
         # the traffic cone of my_scene.world stands 1.5 m ahead
         assert scan['finite'] > 0 and scan['nearest'] < 1.6, scan
-        img = T.probe(['topic', '/camera/image_raw'], env, proc=p)
+        img = T.probe(['topic', '/camera/image_raw', '--save', tmp_path / 'camera.png'], env, proc=p)
         assert (img['width'], img['height'], img['encoding']) == (600, 400, 'rgb8'), img
         assert img['frame_id'] == 'camera' and img['bytes'] == 600 * 400 * 3
         info = T.probe(['topic', '/camera/camera_info'], env, proc=p)
         assert (info['width'], info['height']) == (600, 400)
-        edges = T.probe(['topic', '/sensor_data_proc/edges'], env, proc=p)
+        assert 40 < img['mean'] < 230, 'the camera image is blank: %s' % img
+        edges = T.probe(['topic', '/sensor_data_proc/edges', '--save', tmp_path / 'edges.png'], env, proc=p)
         assert (edges['width'], edges['height'], edges['encoding']) == (600, 400, 'mono8'), edges
-        assert edges['mean'] > 0, 'no edges found in the camera image'
+        # the cone, the crate and the horizon give edges; a blank image gives none
+        assert 200 < edges['nonzero'] < 0.2 * 600 * 400, 'edges in %s: %s' % (tmp_path / 'camera.png', edges)
         assert 'image 600x400' in p.output()
     finally:
         p.stop()

@@ -45,7 +45,8 @@ def summary(msg):
         out.update(width=msg.width, height=msg.height, encoding=msg.encoding, step=msg.step,
                    bytes=len(msg.data))
         data = bytes(msg.data)
-        out['mean'] = float(sum(data[::97]) / max(1, len(data[::97]))) if data else 0.0
+        out['mean'] = float(sum(data)) / len(data) if data else 0.0
+        out['nonzero'] = len(data) - data.count(0)
     elif t == 'sensor_msgs/LaserScan':
         finite = [r for r in msg.ranges if math.isfinite(r) and msg.range_min <= r <= msg.range_max]
         out.update(samples=len(msg.ranges), angle_min=msg.angle_min, angle_max=msg.angle_max,
@@ -166,7 +167,24 @@ def cmd_topic(a):
             _fail('no message on %s within %.0f s' % (a.topic, a.timeout))
         time.sleep(0.05)
     sub.unregister()
+    if a.save and got[-1]._type == 'sensor_msgs/Image':
+        save_image(got[-1], a.save)
     return summary(got[-1])
+
+
+def save_image(msg, path):
+    """Write a sensor_msgs/Image to an image file (PNG) with OpenCV; depth images are scaled
+    to 0-255 over their finite range."""
+    import cv2
+    import numpy as np
+    from cv_bridge import CvBridge
+    img = CvBridge().imgmsg_to_cv2(msg, desired_encoding='passthrough')
+    if msg.encoding == 'rgb8':
+        img = cv2.cvtColor(img, cv2.COLOR_RGB2BGR)
+    elif img.dtype != np.uint8:
+        f = np.nan_to_num(img.astype(np.float64), nan=0.0, posinf=0.0)
+        img = (255 * f / f.max()).astype(np.uint8) if f.max() > 0 else f.astype(np.uint8)
+    cv2.imwrite(path, img)
 
 
 def main(argv=None):
@@ -186,6 +204,7 @@ def main(argv=None):
     p = sp.add_parser('topic')
     p.add_argument('topic')
     p.add_argument('--skip', type=int, default=0, help='messages to skip before the one summarised')
+    p.add_argument('--save', default='', help='write an Image message to this file (PNG)')
     p.add_argument('--timeout', type=float, default=60.0)
     a = ap.parse_args(argv)
     out = {'model': cmd_model, 'drive': cmd_drive, 'topic': cmd_topic}[a.cmd](a)
