@@ -187,6 +187,10 @@ def test_rays_per_origin_and_bad_input():
     np.testing.assert_allclose(d, [3.0, 2.0, 0.5])
     with pytest.raises(ValueError):
         rc.cast(np.zeros((2, 3)), np.zeros((3, 3)), 1.0)
+    with pytest.raises(ValueError, match='non-zero'):
+        rc.cast(np.zeros(3), [[0, 0, 0]], 1.0)
+    # directions that are not unit vectors still give distances
+    np.testing.assert_allclose(rc.cast(np.zeros(3), [[2, 0, 0], [0.5, 0, 0]], 10.0), [3, 3])
     with pytest.raises(ModelError, match='torus'):
         RayCaster([shape('x', Geometry('torus'))])
     with pytest.raises(ModelError, match='no triangles'):

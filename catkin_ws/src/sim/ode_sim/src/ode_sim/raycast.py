@@ -60,6 +60,11 @@ def _as_rays(origins, directions):
         d = d.reshape(1, 3)
     if d.ndim != 2 or d.shape[1] != 3:
         raise ValueError('directions must be (N, 3), got shape %s' % (d.shape,))
+    norm = np.sqrt(np.einsum('ij,ij->i', d, d))
+    if len(d) and not np.all(np.abs(norm - 1.0) < 1e-9):
+        if not np.all(norm > 0) or not np.all(np.isfinite(norm)):
+            raise ValueError('directions must be non-zero finite vectors')
+        d = d / norm[:, None]                       # distances stay distances
     o = np.asarray(origins, dtype=float)
     common = None
     if o.ndim == 1:
