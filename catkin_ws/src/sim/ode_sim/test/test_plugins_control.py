@@ -4,7 +4,6 @@ Unit tests call the plugin directly (no roscore). The last test drives the contr
 topics: this file, run as a script under a private roscore, is a RobotHW-like client holding a
 pendulum at 0.5 rad while the physics and the plugin step in lockstep in a thread.
 """
-import math
 import os
 import sys
 import threading
@@ -30,9 +29,11 @@ I_SPIN = 0.1
 def rig(interfaces, arm_lower=-1.5, arm_upper=1.5):
     """'hinge': a 1 kg, 1 m arm on a revolute joint about Y at 2 m (gravity pulls it down);
     'spin': a disc on a continuous joint about Z (no gravity torque), both fixed to the world."""
-    arm = Link('arm', pose=Pose((0.5, 0, 2)), inertial=Inertial(1.0, ixx=1e-3, iyy=1 / 12, izz=1 / 12),
+    arm = Link('arm', pose=Pose((0.5, 0, 2)),
+               inertial=Inertial(1.0, ixx=1e-3, iyy=1 / 12, izz=1 / 12),
                collisions=[Collision('c', Geometry('box', size=(1, 0.05, 0.05)))])
-    disc = Link('disc', pose=Pose((3, 0, 1)), inertial=Inertial(2.0, ixx=0.05, iyy=0.05, izz=I_SPIN))
+    disc = Link('disc', pose=Pose((3, 0, 1)),
+                inertial=Inertial(2.0, ixx=0.05, iyy=0.05, izz=I_SPIN))
     joints = [Joint('hinge', 'revolute', 'world', 'arm', anchor=np.array([0.0, 0, 2]),
                     axis=np.array([0.0, 1, 0]), lower=arm_lower, upper=arm_upper, effort=50.0,
                     velocity=5.0),
@@ -125,6 +126,9 @@ def test_velocity_tracking_with_the_motor_and_with_pid():
     run(pw, plug, 1.0)
     assert m.joints['spin'].velocity() == pytest.approx(2.0, rel=0.02)
     assert m.joints['spin'].vel_cmd == (2.0, 2.0)            # fmax = the effort limit
+    run(pw, plug, 3.0)                                      # past +-pi: the state unwraps
+    # 4 s at 2 rad/s less 0.1 rad lost accelerating at 2 N m / 0.1 kg m^2
+    assert plug.state_pub.sent[-1].position[0] == pytest.approx(8.0 - 0.1, abs=0.02)
     pw, m, plug = bridge({'spin': 'VelocityJointInterface'})
     plug.set_pid_gains('spin', p=1.0, i=2.0, i_clamp=1.0)
     command(plug, spin=('velocity', 2.0))
@@ -248,9 +252,9 @@ def test_lockstep_times_out_with_one_warning_and_resumes(monkeypatch):
     took = time.monotonic() - t0
     assert 0.2 <= took < 0.5
     assert plug.timeouts == 1
-    assert [w for w in warnings if 'lockstep' in w] == ['ode_sim: lockstep: no joint command for t=0.050 from '
-                        '/rig/ode_sim/joint_commands within 0.2 s; stepping on with the last '
-                        'command']
+    assert [w for w in warnings if 'lockstep' in w] == [
+        'ode_sim: lockstep: no joint command for t=0.050 from /rig/ode_sim/joint_commands '
+        'within 0.2 s; stepping on with the last command']
     command(plug, stamp=plug.state_pub.sent[-1].header.stamp, hinge=('position', 0.2))
     t0 = time.monotonic()
     run(pw, plug, 0.01)                             # commands flowed: waits (and times out) again

@@ -1,4 +1,4 @@
-"""IMU plugins on hand-built worlds (no roscore): gravity at rest, body-frame rates, rates, noise."""
+"""IMU plugins on hand-built worlds (no roscore): gravity at rest, body-frame rates, noise."""
 import math
 
 import numpy as np

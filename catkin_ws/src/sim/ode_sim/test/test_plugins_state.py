@@ -14,10 +14,12 @@ from ode_sim.transforms import Pose
 
 def arm_model():
     """A 1 m arm on a hinge about Y at 2 m height (world-fixed), and a slider on its tip."""
-    arm = Link('arm', pose=Pose((0.5, 0, 2)), inertial=Inertial(1.0, ixx=1e-3, iyy=1 / 12, izz=1 / 12),
+    arm = Link('arm', pose=Pose((0.5, 0, 2)),
+               inertial=Inertial(1.0, ixx=1e-3, iyy=1 / 12, izz=1 / 12),
                collisions=[Collision('c', Geometry('box', size=(1, 0.05, 0.05)))],
                lumped={'tip': Pose((0.5, 0, 0))})
-    block = Link('block', pose=Pose((1.0, 0, 2)), inertial=Inertial(0.2, ixx=1e-3, iyy=1e-3, izz=1e-3))
+    block = Link('block', pose=Pose((1.0, 0, 2)),
+                 inertial=Inertial(0.2, ixx=1e-3, iyy=1e-3, izz=1e-3))
     return Model('arm_bot', links=[arm, block], joints=[
         Joint('hinge', 'continuous', 'world', 'arm', anchor=np.array([0.0, 0, 2]),
               axis=np.array([0.0, 1, 0])),

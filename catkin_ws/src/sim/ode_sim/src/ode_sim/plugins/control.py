@@ -105,6 +105,18 @@ class BridgeJoint:
         self.pid = None
         self.command = 0.0
         self.hold = None                    # position held while the e-stop is active
+        self.wraps = joint.hinge            # ODE reports hinge angles in [-pi, pi]
+        self._pos = None
+
+    def position(self):
+        """The joint position, hinge angles unwrapped (as DefaultRobotHWSim::readSim); call
+        at least once per step so that no turn is missed."""
+        raw = self.joint.position()
+        if not self.wraps or self._pos is None:
+            self._pos = raw
+        else:
+            self._pos += shortest_angular_distance(self._pos, raw)
+        return self._pos
 
     def description(self):
         """The entry of NS/ode_sim/joints (limits only where the URDF has them)."""
@@ -196,8 +208,10 @@ class GazeboRosControl(Plugin):
                 raise self.error('This robot has a joint named "%s" which is not in the gazebo '
                                  'model.' % jname)
             if not interfaces:
-                raise self.error('joint "%s" of transmission %s has no <hardwareInterface>'
-                                 % (jname, t.name))
+                rospy.logwarn("Joint %s of transmission %s does not specify any hardware "
+                              "interface. Not adding it to the robot hardware simulation."
+                              % (jname, t.name))
+                continue
             if len(interfaces) > 1:
                 rospy.logwarn("Joint %s of transmission %s specifies multiple hardware interfaces. "
                               "Currently the default robot hardware simulation interface only "
@@ -215,7 +229,8 @@ class GazeboRosControl(Plugin):
 
     def _init_commands(self):
         for j in self.joints:
-            j.command = j.joint.position() if j.interface == POSITION else 0.0
+            j._pos = None
+            j.command = j.position() if j.interface == POSITION else 0.0
             j.hold = None
             if j.pid is not None:
                 j.pid.reset()
@@ -283,7 +298,7 @@ class GazeboRosControl(Plugin):
         msg = JointState()
         msg.header.stamp = stamp if stamp is not None else self.ctx.now()
         msg.name = [j.name for j in self.joints]
-        msg.position = [float(j.joint.position()) for j in self.joints]
+        msg.position = [float(j.position()) for j in self.joints]
         msg.velocity = [float(j.joint.velocity()) for j in self.joints]
         msg.effort = [float(j.joint.effort()) for j in self.joints]
         return msg
@@ -337,11 +352,13 @@ class GazeboRosControl(Plugin):
         for j in self.joints:
             iface = j.interface
             if iface == STATE:
+                j.position()
                 continue
             sj = j.joint
+            q = j.position()
             if estop:
                 if j.hold is None:
-                    j.hold = sj.position()
+                    j.hold = q
             else:
                 j.hold = None
             cmd = j.command
@@ -358,13 +375,14 @@ class GazeboRosControl(Plugin):
                 p = j.hold if estop else clamp(cmd, j.lower, j.upper)
                 if j.pid is not None:
                     if sj.type == 'continuous':
-                        err = shortest_angular_distance(sj.position(), p)
+                        err = shortest_angular_distance(q, p)
                     else:
-                        err = p - sj.position()
+                        err = p - q
                     effort = j.pid.compute(err, dt)
                     sj.set_effort(clamp(effort, _neg(j.effort), j.effort))
                 else:
-                    sj.set_position_target(p)
+                    # the motor servoes the raw (wrapped) angle: aim at the same offset
+                    sj.set_position_target(sj.position() + (p - q))
 
     def reset(self):
         super().reset()

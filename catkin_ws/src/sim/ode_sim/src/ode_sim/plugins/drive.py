@@ -31,13 +31,6 @@ from .state import close, fill_pose, publisher, subscriber, transform_msg
 from ..transforms import Pose, quat_from_rpy
 
 LEFT, RIGHT = 0, 1
-# A wheel told to stand still holds its angle: ODE's iterative solver (quick, 50 iterations)
-# leaves a residual joint-motor velocity of ~1e-3 rad/s under load (a frictionless caster makes
-# it worse), which would let a parked robot creep millimetres per minute. Within HOLD_BAND of
-# the angle where it stopped the wheel is steered back (HOLD_GAIN 1/s, still limited by the
-# drive torque); beyond it the anchor follows the wheel, so no spring-back after a push.
-HOLD_GAIN = 10.0
-HOLD_BAND = 0.02
 ODOM_POSE_COVARIANCE = {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}
 
 
@@ -50,28 +43,9 @@ class _Drive(Plugin):
     """What both drives share: cmd_vel, ground-truth base pose, odometry message, wheel motors."""
 
     def _set_wheels(self, joints, speeds, fmax):
-        """Joint velocity targets (rad/s) with at most `fmax`; zero targets hold the angle."""
-        self._fmax = fmax
+        """Joint velocity targets (rad/s) with at most `fmax` (SetParam("vel"/"fmax"))."""
         for j, w in zip(joints, speeds):
-            if w == 0.0:
-                self._hold.setdefault(j.name, j.position())
-            else:
-                self._hold.pop(j.name, None)
             j.set_velocity(w, fmax=fmax)
-        self._hold_step()
-
-    def _hold_step(self):
-        """Every step: steer the standing wheels back to their anchor angle."""
-        hold = self._hold
-        for name, anchor in hold.items():
-            j = self.model.joints[name]
-            q = j.position()
-            err = anchor - q
-            if abs(err) > HOLD_BAND:
-                anchor = q + math.copysign(HOLD_BAND, err)
-                hold[name] = anchor
-                err = anchor - q
-            j.set_velocity(HOLD_GAIN * err, fmax=self._fmax)
 
     def _setup_base(self, base_frame, odom_frame):
         self.base_frame = base_frame
@@ -84,12 +58,6 @@ class _Drive(Plugin):
                           "model pose" % (self.label, self.ns or '/', self.model.name, base_frame))
         self.cmd = (0.0, 0.0)
         self.cmd_sub = None
-        self._hold = {}                 # joint name -> anchor angle of a standing wheel
-        self._fmax = 0.0
-
-    def reset(self):
-        super().reset()
-        self._hold = {}
 
     def _subscribe(self, topic):
         from geometry_msgs.msg import Twist
@@ -188,7 +156,6 @@ class DiffDrive(_Drive):
         if self.odom_source == 'encoder':
             self.update_encoder()
         if not self.due():
-            self._hold_step()
             return
         now = self.ctx.time
         dt = now - self._last_update
@@ -341,7 +308,6 @@ class SkidSteerDrive(_Drive):
 
     def update(self):
         if not self.due():
-            self._hold_step()
             return
         self.publish_odometry()
         self.drive()
