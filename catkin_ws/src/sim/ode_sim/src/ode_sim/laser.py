@@ -16,7 +16,9 @@ Rays (MultiRayShape::Init)
   * Each ray starts at <range><min> along its direction and is <range><max> - <range><min>
     long (start = axis * minRange + offset). Objects closer than range_min are therefore not
     seen at all: the ray starts beyond them and reports what lies behind (gazebo-classic issue
-    #1564 "Ray sensor looking through walls"). `scan()` casts exactly so.
+    #1564 "Ray sensor looking through walls"). `scan()` gets the same hits by casting from the
+    sensor origin with RayCaster's min_range = range_min (ODE reports the first surface
+    crossing after a ray's start, also from inside a shape).
   * Raw range of a ray (MultiRayShape::GetRange): range_min + the ray's length, the length
     being the hit depth if ODE reported a contact with depth < the full length
     (ODEMultiRayShape::UpdateCallback), else the full length: no hit gives range_max.
@@ -37,6 +39,11 @@ Ranges (RaySensor::UpdateImpl)
   * <range><resolution> is read by RaySensor::RangeResolution() only; Gazebo does not
     quantise ranges with it. We do the same by default; LaserModel(quantize=True) rounds
     finite ranges to multiples of it (after noise, before the clamp) for those who want it.
+
+Parameters (Sensor.params as ode_sim.sdf fills them, or a dict; SDF defaults when missing):
+  samples resolution min_angle max_angle, v_samples v_resolution v_min_angle v_max_angle,
+  range_min range_max range_resolution, noise_type noise_mean noise_stddev noise_bias_mean
+  noise_bias_stddev noise_precision. Bad values raise ModelError naming the sensor.
 
 Noise (GaussianNoiseModel, created by NoiseFactory from <ray><noise>)
   * type "gaussian" (and the deprecated "gaussian_quantized"): output = in + bias + N(mean,
@@ -206,6 +213,9 @@ class LaserModel:
                                  % (self.where, key, val))
         bias_mean = _get(params, 'noise_bias_mean', float, self.where)
         bias_std = _get(params, 'noise_bias_stddev', float, self.where)
+        if not any((self.noise_mean, self.noise_stddev, self.noise_precision, bias_mean,
+                    bias_std)):
+            active = self.noise = False     # a zero <noise> changes nothing: skip the draws
         self.noise_bias = 0.0
         if active and (bias_mean != 0.0 or bias_std != 0.0):
             bias = self.rng.normal(bias_mean, bias_std) if bias_std > 0 else bias_mean
