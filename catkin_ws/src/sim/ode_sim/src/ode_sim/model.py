@@ -168,6 +168,7 @@ class Model:
     source: str = ''                # file the model came from, for messages
     urdf: str = ''                  # the URDF text when spawned from URDF
     canonical_link: str = ''        # root link (model pose reports this link's pose)
+    allow_auto_disable: bool = True  # SDF <allow_auto_disable>: may sleep when at rest
     warnings: List[str] = field(default_factory=list)
 
     def link(self, name):

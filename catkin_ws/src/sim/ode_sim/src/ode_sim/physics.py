@@ -84,8 +84,14 @@ class SimLink:
         return (np.array(self.body.getPointVel(tuple(point))),
                 np.array(self.body.getAngularVel()))
 
+    def wake(self):
+        if self.body is not None:
+            self.model.world._rouse(self.model.space)
+            self.body.enable()
+
     def add_force(self, force, point=None):
         if self.body is not None:
+            self.wake()
             if point is None:
                 self.body.addForce(tuple(force))
             else:
@@ -93,6 +99,7 @@ class SimLink:
 
     def add_torque(self, torque):
         if self.body is not None:
+            self.wake()
             self.body.addTorque(tuple(torque))
 
 
@@ -110,7 +117,9 @@ class SimJoint:
         self.effort_cmd = 0.0           # applied every step
         self.vel_cmd = None             # (velocity, fmax) motor target, or None
         self.pos_cmd = None             # position target (servoed by the motor), or None
-        self.applied_effort = 0.0
+        self._applied = 0.0             # effort added by torque this step (not in feedback)
+        self.active = bool(desc.damping)
+        self.world_ref = model.world
         self.limit_effort = desc.effort if desc.effort and desc.effort > 0 else None
         self.limit_velocity = desc.velocity if desc.velocity and desc.velocity > 0 else None
 
@@ -137,8 +146,31 @@ class SimJoint:
         return 0.0
 
     def effort(self):
-        """The effort the joint applied in the last step (command + motor + damping)."""
-        return self.applied_effort
+        """The effort the joint applied to its child in the last step about/along the axis
+        (command, motor, limits and damping: the constraint feedback)."""
+        if not (self.hinge or self.slider):
+            return 0.0
+        fb = self.joint.getFeedback()
+        if fb is None:
+            return 0.0
+        ax = self.joint.getAxis()
+        v = fb[1] if self.hinge else fb[0]
+        return v[0] * ax[0] + v[1] * ax[1] + v[2] * ax[2] + self._applied
+
+    def _motor(self, vel, fmax):
+        self.joint.setParam(P_VEL, vel)
+        self.joint.setParam(P_FMAX, fmax)
+
+    def _idle_motor(self):
+        """No command: the motor holds zero velocity with the joint's friction (or is off)."""
+        if self.desc.friction > 0:
+            self._motor(0.0, self.desc.friction)
+        else:
+            self.joint.setParam(P_FMAX, 0.0)
+
+    def _update_active(self):
+        self.active = bool(self.pos_cmd is not None or self.effort_cmd or self.desc.damping)
+        self.world_ref._refresh_active()
 
     def set_effort(self, effort):
         """Apply this effort every step until changed (clamped to the URDF effort limit)."""
@@ -147,6 +179,9 @@ class SimJoint:
         if self.limit_effort is not None:
             effort = max(-self.limit_effort, min(self.limit_effort, effort))
         self.effort_cmd = float(effort)
+        if self.hinge or self.slider:
+            self._idle_motor()
+        self._update_active()
 
     def set_velocity(self, velocity, fmax=None):
         """Drive the joint at `velocity` with at most `fmax` (default: the effort limit, else
@@ -156,57 +191,45 @@ class SimJoint:
         self.pos_cmd = None
         self.effort_cmd = 0.0
         self.vel_cmd = (float(velocity), float(fmax))
+        if self.hinge or self.slider:
+            self._motor(self.vel_cmd[0], self.vel_cmd[1])
+            self.child.wake()
+        self._update_active()
 
     def set_position_target(self, position):
         """Servo to `position` with the joint motor (effort and velocity limits honoured)."""
         self.vel_cmd = None
         self.effort_cmd = 0.0
         self.pos_cmd = float(position)
+        self.child.wake()
+        self._update_active()
 
     def release(self):
         self.vel_cmd = None
         self.pos_cmd = None
         self.effort_cmd = 0.0
+        if self.hinge or self.slider:
+            self._idle_motor()
+        self._update_active()
 
     def _pre_step(self, dt):
-        if not (self.hinge or self.slider):
-            return
+        """Per-step work of an active joint: position servo, effort command, damping."""
         j = self.joint
-        rate = self.velocity()
-        effort = self.effort_cmd - self.desc.damping * rate
         if self.pos_cmd is not None:
             vel = (self.pos_cmd - self.position()) / dt
             vmax = self.limit_velocity
             if vmax is not None:
                 vel = max(-vmax, min(vmax, vel))
-            fmax = self.limit_effort if self.limit_effort is not None else 1e6
-            j.setParam(P_VEL, vel)
-            j.setParam(P_FMAX, fmax)
-        elif self.vel_cmd is not None:
-            j.setParam(P_VEL, self.vel_cmd[0])
-            j.setParam(P_FMAX, self.vel_cmd[1])
-        elif self.desc.friction > 0:
-            j.setParam(P_VEL, 0.0)
-            j.setParam(P_FMAX, self.desc.friction)
-        else:
-            j.setParam(P_FMAX, 0.0)
+            self._motor(vel, self.limit_effort if self.limit_effort is not None else 1e6)
+        effort = self.effort_cmd
+        if self.desc.damping:
+            effort -= self.desc.damping * self.velocity()
+        self._applied = effort
         if effort:
             if self.hinge:
                 j.addTorque(effort)
             else:
                 j.addForce(effort)
-        self._cmd_effort = effort
-
-    def _post_step(self):
-        if not (self.hinge or self.slider):
-            return
-        fb = self.joint.getFeedback()
-        motor = 0.0
-        if fb is not None:
-            # torque on the child body about the joint axis (includes motor and limits)
-            axis = np.array(self.joint.getAxis())
-            motor = float(np.dot(fb[1], axis)) if self.hinge else float(np.dot(fb[0], axis))
-        self.applied_effort = motor
 
 
 class SimModel:
@@ -237,10 +260,18 @@ class SimModel:
     def bodies(self):
         return [l.body for l in self.links.values() if l.body is not None]
 
+    def wake(self):
+        """Wake every body (after a teleport, a push, a reset)."""
+        if not self.static:
+            self.world._rouse(self.space)
+            for b in self.bodies():
+                b.enable()
+
     def set_pose(self, pose):
         """Move the whole model rigidly so that its pose becomes `pose`."""
         if self.static:
             return
+        self.wake()
         delta = pose * self.pose().inverse()
         for link in self.links.values():
             b = link.body
@@ -253,6 +284,7 @@ class SimModel:
 
     def set_twist(self, linear, angular):
         """Give every body the rigid-body velocity of the model frame moving at (linear, angular)."""
+        self.wake()
         origin = self.pose().p
         lin = np.asarray(linear, dtype=float)
         ang = np.asarray(angular, dtype=float)
@@ -264,6 +296,7 @@ class SimModel:
     def set_configuration(self, positions):
         """Place the links for the given joint positions {name: value} (others keep theirs)
         with the model pose unchanged, and zero all velocities (set_model_configuration)."""
+        self.wake()
         for name in positions:
             if name not in self.joints:
                 raise ModelError("model '%s' has no joint '%s'" % (self.name, name))
@@ -324,16 +357,30 @@ class PhysicsWorld:
         self.world.setContactMaxCorrectingVel(physics.contact_max_correcting_vel)
         self.world.setContactSurfaceLayer(physics.contact_surface_layer)
         self.static_space = ode.HashSpace()
+        self.dynamic_space = ode.HashSpace()    # one sub-space per awake dynamic model
+        self.dormant_space = ode.HashSpace()    # sub-spaces of models whose bodies all sleep
         self.contact_group = ode.JointGroup()
-        _KEEP_ALIVE.extend((self.world, self.static_space, self.contact_group))
+        _KEEP_ALIVE.extend((self.world, self.static_space, self.dynamic_space,
+                            self.dormant_space, self.contact_group))
+        # Resting bodies of models that allow it fall asleep (SDF <allow_auto_disable>, default
+        # true, as Gazebo's ODE links) and cost nothing until something touches them.
+        self.world.setAutoDisableLinearThreshold(0.01)
+        self.world.setAutoDisableAngularThreshold(0.01)
+        self.world.setAutoDisableSteps(10)
+        self.world.setAutoDisableTime(0)
         self.models = {}
         self.time = 0.0
         self.steps = 0
         self.max_contacts = max(1, int(physics.max_contacts))
         self._surf = {}                 # geom -> (mu1, mu2, kp, kd, fdir1, bounce, model, body)
         self._dyn_spaces = []           # spaces of dynamic models
+        self._space_bodies = {}         # model space -> its bodies (sleep test)
+        self._dormant = set()           # model spaces now in dormant_space
+        self._wake = []                 # dormant spaces touched this step
+        self._contacts = 0              # contact joints created (counter)
         self._self_collide = []         # spaces whose links collide with each other
         self._joints = []
+        self._active = []               # joints with per-step work
         self._tracked = []
         self._version = 0               # bumps when shapes change (ray caster / renderer refresh)
         self.use_step = physics.solver_type == 'world'
@@ -346,7 +393,9 @@ class PhysicsWorld:
             raise ModelError("%s: model '%s' has no links" % (desc.source or 'model', desc.name))
         m = SimModel(self, desc)
         static = desc.static
-        space = self.static_space if static else ode.HashSpace()
+        # bodies take the world's auto-disable flag when created (PyODE has no per-body setter)
+        self.world.setAutoDisableFlag(bool(self.auto_disable(desc)))
+        space = self.static_space if static else ode.HashSpace(self.dynamic_space)
         if not static:
             _KEEP_ALIVE.append(space)
         m.space = space
@@ -367,6 +416,7 @@ class PhysicsWorld:
             self._make_joint(m, jd)
         if not static:
             self._dyn_spaces.append(space)
+            self._space_bodies[space] = m.bodies()
             if any(l.self_collide for l in desc.links):
                 self._self_collide.append(space)
         self.models[desc.name] = m
@@ -491,7 +541,13 @@ class PhysicsWorld:
         sj = SimJoint(m, jd, j, parent, child)
         m.joints[jd.name] = sj
         self._joints.append(sj)
+        if sj.hinge or sj.slider:
+            sj._idle_motor()
+        self._refresh_active()
         return sj
+
+    def _refresh_active(self):
+        self._active = [j for j in self._joints if j.active]
 
     def remove_model(self, name):
         m = self.models.pop(name, None)
@@ -499,6 +555,7 @@ class PhysicsWorld:
             return False
         for sj in m.joints.values():
             self._joints.remove(sj)
+        self._refresh_active()
         for link in m.links.values():
             for g in link.geoms:
                 self._surf.pop(g, None)
@@ -512,6 +569,10 @@ class PhysicsWorld:
                 link.body.disable()
         if m.space in self._dyn_spaces:
             self._dyn_spaces.remove(m.space)
+            self._space_bodies.pop(m.space, None)
+            parent = self.dormant_space if m.space in self._dormant else self.dynamic_space
+            parent.remove(m.space)
+            self._dormant.discard(m.space)
         if m.space in self._self_collide:
             self._self_collide.remove(m.space)
         # ODE frees bodies/joints when the Python objects go away; detach joints first
@@ -529,8 +590,24 @@ class PhysicsWorld:
             link.prev_vel = np.array(link.body.getLinearVel())
             self._tracked.append(link)
 
+    @staticmethod
+    def auto_disable(desc):
+        """Robots (spawned from URDF, driven by plugins) stay awake; other models may sleep."""
+        return not desc.urdf and desc.allow_auto_disable
+
+    def _asleep(self, g):
+        bodies = self._space_bodies.get(g)
+        if bodies is None:              # a static geom
+            return True
+        for b in bodies:
+            if b.isEnabled():
+                return False
+        return True
+
     def _near(self, _arg, g1, g2):
         if g1.isSpace() or g2.isSpace():
+            if self._asleep(g1) and self._asleep(g2):
+                return                  # nothing awake on either side: no contacts needed
             ode.collide2(g1, g2, None, self._near)
             return
         s1 = self._surf.get(g1)
@@ -576,19 +653,51 @@ class PhysicsWorld:
                 c.setBounce(bounce)
                 c.setBounceVel(min(s1[6], s2[6]))
             ode.ContactJoint(world, group, c).attach(b1, b2)
+        self._contacts += 1
+
+    def _near_dormant(self, _arg, g1, g2):
+        """An awake model space near a sleeping one: collide; contacts wake the sleeper."""
+        before = self._contacts
+        ode.collide2(g1, g2, None, self._near)
+        if self._contacts != before:
+            self._wake.append(g2 if g2 in self._dormant else g1)
+
+    def _sort_sleepers(self):
+        """Move models whose bodies all sleep out of the awake space (and back)."""
+        for sp, bodies in self._space_bodies.items():
+            asleep = not any(b.isEnabled() for b in bodies)
+            if asleep and sp not in self._dormant:
+                self.dynamic_space.remove(sp)
+                self.dormant_space.add(sp)
+                self._dormant.add(sp)
+            elif not asleep and sp in self._dormant:
+                self._rouse(sp)
+
+    def _rouse(self, sp):
+        if sp in self._dormant:
+            self.dormant_space.remove(sp)
+            self.dynamic_space.add(sp)
+            self._dormant.discard(sp)
+            for b in self._space_bodies[sp]:
+                b.enable()
 
     def step(self, n=1):
         dt = self.dt
-        spaces = self._dyn_spaces
+        dynamic = self.dynamic_space
         static = self.static_space
         near = self._near
         for _ in range(n):
-            for sj in self._joints:
+            for sj in self._active:
                 sj._pre_step(dt)
-            for i, sp in enumerate(spaces):
-                ode.collide2(sp, static, None, near)
-                for other in spaces[i + 1:]:
-                    ode.collide2(sp, other, None, near)
+            ode.collide2(dynamic, static, None, near)   # model spaces vs the static world
+            dynamic.collide(None, near)                 # model spaces vs each other
+            if self._dormant:
+                ode.collide2(dynamic, self.dormant_space, None, self._near_dormant)
+                if self._wake:
+                    for sp in self._wake:
+                        self._rouse(sp)
+                        ode.collide2(sp, static, None, near)
+                    self._wake = []
             for sp in self._self_collide:
                 sp.collide(None, near)
             if self.use_step:
@@ -596,14 +705,14 @@ class PhysicsWorld:
             else:
                 self.world.quickStep(dt)
             self.contact_group.empty()
-            for sj in self._joints:
-                sj._post_step()
             for link in self._tracked:
                 v = np.array(link.body.getLinearVel())
                 link.accel = (v - link.prev_vel) / dt
                 link.prev_vel = v
             self.steps += 1
             self.time = self.steps * dt
+            if self.steps % 100 == 0:
+                self._sort_sleepers()
 
     # ----------------------------------------------------------------- state
     def reset_world(self):
@@ -623,6 +732,7 @@ class PhysicsWorld:
                 link.body.enable()
             for sj in m.joints.values():
                 sj.release()
+            m.wake()
         for link in self._tracked:
             link.prev_vel = np.zeros(3)
             link.accel = np.zeros(3)

@@ -637,6 +637,7 @@ def parse_model(ctx, el, prefix='', parent_pose=None, nested_in=None):
     if top:
         model.pose = pose
         model.static = ctx.boolean(el, 'static', False)
+        model.allow_auto_disable = ctx.boolean(el, 'allow_auto_disable', True)
         model.source = ctx.doc.source
         base = Pose()
     else:
