@@ -1,0 +1,102 @@
+"""Practical work 6 replayed as a student does it (textbook chapter 7): camera and lidar.
+
+`catkin_create_pkg my_robot_simulation_sensors rospy std_msgs`, the chapter's model, gazebo and
+launch files (from the reference package catkin_ws/src/course/my_robot_simulation_sensors),
+the text's own `sensor_data_proc.py` listing, `catkin build`, `check_urdf`, then
+`roslaunch my_robot_simulation_sensors robot_sim_camera.launch gui:=false rviz:=false`:
+/scan and /camera/image_raw arrive with the configured sizes, `rostopic echo` of single fields
+works, and the student's script publishes Canny edges of the camera image.
+"""
+import importlib.util
+import os
+import re
+import shutil
+import textwrap
+
+import pytest
+
+from my_robot_simulation import sim_testing as T
+
+_spec = importlib.util.spec_from_file_location(
+    'course_tasks_student_shell_6', os.path.join(os.path.dirname(__file__), 'student_shell.py'))
+S = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(S)
+
+PKG = 'my_robot_simulation_sensors'
+HERE = os.path.dirname(os.path.abspath(__file__))
+REFERENCE = os.path.join(S.REPO, 'catkin_ws', 'src', 'course', PKG)
+STARTER = os.path.join(HERE, 'task_6', 'starter', PKG)
+README = os.path.join(HERE, 'task_6', 'README.md')
+FILES = {'urdf': ['diff_drive_robot.urdf.xacro', 'diff_drive.gazebo'],
+         'launch': ['robot_sim_camera.launch'],
+         'config': ['sensors.rviz']}
+
+
+def readme_listing(start):
+    with open(README) as f:
+        text = f.read()
+    for m in re.finditer(r'```\w*\n(.*?)```', text, re.S):
+        block = textwrap.dedent(m.group(1))
+        if block.startswith(start):
+            return block
+    raise AssertionError('no listing starting with %r in %s' % (start, README))
+
+
+@pytest.fixture(scope='module')
+def workspace(tmp_path_factory):
+    ws = S.make_workspace(tmp_path_factory.mktemp('task6'))
+    src = os.path.join(ws, 'src')
+    out = S.sh(['catkin_create_pkg', PKG, 'rospy', 'std_msgs'], S.shell_env(), cwd=src)
+    pkg = os.path.join(src, PKG)
+    S.sh(['mkdir', 'launch', 'urdf', 'config', 'scripts'], S.shell_env(), cwd=pkg)
+    for d, names in FILES.items():
+        for name in names:
+            shutil.copy2(os.path.join(REFERENCE, d, name), os.path.join(pkg, d, name))
+    script = os.path.join(pkg, 'scripts', 'sensor_data_proc.py')
+    with open(script, 'w') as f:
+        f.write(readme_listing('#!/usr/bin/env python3\nimport os'))
+    os.chmod(script, 0o755)
+    build = S.catkin_build(ws)
+    return dict(ws=ws, pkg=pkg, env=S.overlay_env(ws), create_out=out, build=build)
+
+
+def test_starter_layout():
+    with open(os.path.join(STARTER, 'package.xml')) as f:
+        xml = f.read()
+    for dep in ('my_robot_simulation', 'cv_bridge', 'gazebo_ros', 'sensor_msgs'):
+        assert '<exec_depend>%s</exec_depend>' % dep in xml
+
+
+def test_model_with_sensors(workspace):
+    env, urdf = workspace['env'], os.path.join(workspace['pkg'], 'urdf')
+    assert S.sh(['rospack', 'find', PKG], env).strip() == workspace['pkg']
+    S.sh('rosrun xacro xacro diff_drive_robot.urdf.xacro > diff_drive_robot.urdf', env, cwd=urdf)
+    out = S.sh(['check_urdf', 'diff_drive_robot.urdf'], env, cwd=urdf)
+    assert 'root Link: base_link has 5 child(ren)' in out and 'camera' in out and 'lidar' in out, out
+    with open(os.path.join(urdf, 'diff_drive_robot.urdf')) as f:
+        text = f.read()
+    assert 'libgazebo_ros_camera.so' in text and 'libgazebo_ros_laser.so' in text
+    assert 'libgazebo_ros_diff_drive.so' in text
+
+
+def test_camera_lidar_and_edges(workspace, roscore, tmp_path):
+    env = S.with_master(workspace['env'], roscore)
+    env.pop('DISPLAY', None)
+    p = S.launch(['roslaunch', PKG, 'robot_sim_camera.launch', 'gui:=false', 'rviz:=false'], env,
+                 tmp_path / 'launch.log')
+    try:
+        scan = T.probe(['topic', '/scan'], env, proc=p)
+        assert scan['samples'] == 720 and scan['frame_id'] == 'lidar', scan
+        out = S.sh(['rostopic', 'echo', '-n', '1', '/scan/angle_min'], env, timeout=30)
+        assert float(out.split()[0]) == pytest.approx(-0.785, abs=1e-3)
+        img = T.probe(['topic', '/camera/image_raw', '--save', tmp_path / 'camera.png'], env, proc=p)
+        assert (img['width'], img['height'], img['encoding']) == (600, 400, 'rgb8'), img
+        out = S.sh(['rostopic', 'echo', '-n', '1', '/sensor_data_proc/edges/width'], env, timeout=60)
+        assert out.split()[0] == '600'
+        edges = T.probe(['topic', '/sensor_data_proc/edges', '--save', tmp_path / 'edges.png'], env, proc=p)
+        assert (edges['height'], edges['encoding']) == (400, 'mono8'), edges
+        assert edges['nonzero'] > 200, 'no edges in the camera image %s (mean %.1f): %s' % (
+            tmp_path / 'camera.png', img['mean'], edges)
+        S.wait_output(p, 'edge pixels', timeout=30)
+    finally:
+        p.stop()
