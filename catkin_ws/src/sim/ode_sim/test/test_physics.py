@@ -163,3 +163,23 @@ def test_bad_models_are_refused_with_their_name():
     bad.joints[0].child = 'ghost'
     with pytest.raises(ModelError, match="unknown links"):
         pw.add_model(bad)
+
+
+def test_mesh_collision_becomes_its_bounding_box_with_a_warning():
+    verts = np.array([[0, 0, 0], [1, 0, 0], [0, 2, 0], [0, 0, 3]], dtype=float) + [1, 1, 0]
+    faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    mesh = Geometry('mesh', uri='model://thing/meshes/t.stl', vertices=verts, faces=faces)
+    m = box('thing', z=5.0)
+    m.links[0].collisions = [Collision('c', mesh)]
+    pw = PhysicsWorld(Physics())
+    pw.add_model(ground())
+    sm = pw.add_model(m)
+    shape = [s for s in pw.collision_shapes() if s.model == 'thing'][0]
+    assert shape.geometry.kind == 'box' and shape.geometry.size == pytest.approx((1, 2, 3))
+    assert shape.world_pose().p == pytest.approx([1.5, 2.0, 6.5])
+    assert any("mesh 'model://thing/meshes/t.stl' simulated as its bounding box" in w
+               for w in m.warnings)
+    pw.step(3000)
+    corners = np.array([[x, y, z] for x in (-.5, .5) for y in (-1, 1) for z in (-1.5, 1.5)])
+    lowest = shape.world_pose().apply(corners)[:, 2].min()
+    assert lowest == pytest.approx(0.0, abs=0.01)   # the box lies on the ground, not in it

@@ -79,9 +79,11 @@ class SimNode:
     def add_model(self, desc):
         """Add a model and start its plugins (under the lock). Raises ModelError."""
         with self.lock:
-            for w in desc.warnings:
-                rospy.logwarn('ode_sim: %s' % w)
-            sim_model = self.physics.add_model(desc)
+            try:
+                sim_model = self.physics.add_model(desc)
+            finally:
+                for w in desc.warnings:
+                    rospy.logwarn('ode_sim: %s' % w)
             try:
                 plugins = self.spawner.plugins_for(sim_model, desc)
             except Exception as e:

@@ -14,12 +14,13 @@ Conventions as Gazebo classic on ODE:
 
 No ROS here: the node (ode_sim.node) owns time pacing, plugins and the ROS API.
 """
+import ctypes
 import math
 
 import numpy as np
 import ode
 
-from .model import ModelError
+from .model import Geometry, ModelError
 from .scene import ShapeInstance
 from .transforms import Pose, quat_from_axis_angle, quat_to_matrix
 
@@ -31,10 +32,14 @@ ENV = ode.environment
 P_LO_STOP, P_HI_STOP, P_VEL, P_LO_VEL, P_HI_VEL, P_FMAX = 0, 1, 2, 3, 4, 5
 
 # ODE worlds, spaces and joint groups are never freed. PyODE's objects clear their references
-# in arbitrary order when the garbage collector breaks a cycle, so a world could be destroyed
-# before its bodies (dBodyDestroy on freed memory: segfault). Bodies, joints and geoms are
-# still freed; only these small containers stay, one set per PhysicsWorld.
-_KEEP_ALIVE = []
+# in arbitrary order when the garbage collector breaks a cycle (or the interpreter exits), so a
+# world could be destroyed before its bodies (dBodyDestroy on freed memory: segfault). Bodies,
+# joints and geoms are still freed; only these small containers stay, one set per PhysicsWorld.
+
+
+def _keep_alive(*objs):
+    for obj in objs:
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(obj))
 
 
 def _ode_q(q):
@@ -357,11 +362,8 @@ class PhysicsWorld:
         self.world.setContactMaxCorrectingVel(physics.contact_max_correcting_vel)
         self.world.setContactSurfaceLayer(physics.contact_surface_layer)
         self.static_space = ode.HashSpace()
-        self.dynamic_space = ode.HashSpace()    # one sub-space per awake dynamic model
-        self.dormant_space = ode.HashSpace()    # sub-spaces of models whose bodies all sleep
         self.contact_group = ode.JointGroup()
-        _KEEP_ALIVE.extend((self.world, self.static_space, self.dynamic_space,
-                            self.dormant_space, self.contact_group))
+        _keep_alive(self.world, self.static_space, self.contact_group)
         # Resting bodies of models that allow it fall asleep (SDF <allow_auto_disable>, default
         # true, as Gazebo's ODE links) and cost nothing until something touches them.
         self.world.setAutoDisableLinearThreshold(0.01)
@@ -375,7 +377,10 @@ class PhysicsWorld:
         self._surf = {}                 # geom -> (mu1, mu2, kp, kd, fdir1, bounce, model, body)
         self._dyn_spaces = []           # spaces of dynamic models
         self._space_bodies = {}         # model space -> its bodies (sleep test)
-        self._dormant = set()           # model spaces now in dormant_space
+        # Model spaces are top-level spaces that never change parent (moving spaces between
+        # parents left ODE with stale bounding boxes); sleeping ones just change list.
+        self._awake = []                # spaces of models with a body awake
+        self._dormant = []              # spaces of models whose bodies all sleep
         self._wake = []                 # dormant spaces touched this step
         self._contacts = 0              # contact joints created (counter)
         self._self_collide = []         # spaces whose links collide with each other
@@ -391,13 +396,14 @@ class PhysicsWorld:
             raise ModelError("a model named '%s' already exists" % desc.name)
         if not desc.links:
             raise ModelError("%s: model '%s' has no links" % (desc.source or 'model', desc.name))
+        _boxes_for_meshes(desc)
         m = SimModel(self, desc)
         static = desc.static
         # bodies take the world's auto-disable flag when created (PyODE has no per-body setter)
         self.world.setAutoDisableFlag(bool(self.auto_disable(desc)))
-        space = self.static_space if static else ode.HashSpace(self.dynamic_space)
+        space = self.static_space if static else ode.HashSpace()
         if not static:
-            _KEEP_ALIVE.append(space)
+            _keep_alive(space)
         m.space = space
         world_of = desc.pose
         for ld in desc.links:
@@ -416,6 +422,7 @@ class PhysicsWorld:
             self._make_joint(m, jd)
         if not static:
             self._dyn_spaces.append(space)
+            self._awake.append(space)
             self._space_bodies[space] = m.bodies()
             if any(l.self_collide for l in desc.links):
                 self._self_collide.append(space)
@@ -464,15 +471,7 @@ class PhysicsWorld:
             elif k == 'cylinder':
                 geom = ode.GeomCylinder(space, float(g.radius), float(g.length))
             elif k == 'mesh':
-                if g.vertices is None or g.faces is None or len(g.faces) == 0:
-                    raise ModelError("%s: collision '%s' of link '%s': mesh '%s' has no triangles"
-                                     % (link.model.desc.source or 'model', c.name, link.name,
-                                        g.uri or g.filename))
-                data = ode.TriMeshData()
-                data.build([tuple(v) for v in g.vertices.tolist()],
-                           [tuple(f) for f in g.faces.tolist()])
-                geom = ode.GeomTriMesh(data, space)
-                geom._data = data           # keep the data alive as long as the geom
+                raise AssertionError('mesh collisions are replaced by boxes in add_model')
             else:
                 raise ModelError("%s: collision '%s' of link '%s': unknown geometry '%s'"
                                  % (link.model.desc.source or 'model', c.name, link.name, k))
@@ -570,9 +569,9 @@ class PhysicsWorld:
         if m.space in self._dyn_spaces:
             self._dyn_spaces.remove(m.space)
             self._space_bodies.pop(m.space, None)
-            parent = self.dormant_space if m.space in self._dormant else self.dynamic_space
-            parent.remove(m.space)
-            self._dormant.discard(m.space)
+            for lst in (self._awake, self._dormant):
+                if m.space in lst:
+                    lst.remove(m.space)
         if m.space in self._self_collide:
             self._self_collide.remove(m.space)
         # ODE frees bodies/joints when the Python objects go away; detach joints first
@@ -595,19 +594,8 @@ class PhysicsWorld:
         """Robots (spawned from URDF, driven by plugins) stay awake; other models may sleep."""
         return not desc.urdf and desc.allow_auto_disable
 
-    def _asleep(self, g):
-        bodies = self._space_bodies.get(g)
-        if bodies is None:              # a static geom
-            return True
-        for b in bodies:
-            if b.isEnabled():
-                return False
-        return True
-
     def _near(self, _arg, g1, g2):
         if g1.isSpace() or g2.isSpace():
-            if self._asleep(g1) and self._asleep(g2):
-                return                  # nothing awake on either side: no contacts needed
             ode.collide2(g1, g2, None, self._near)
             return
         s1 = self._surf.get(g1)
@@ -655,49 +643,46 @@ class PhysicsWorld:
             ode.ContactJoint(world, group, c).attach(b1, b2)
         self._contacts += 1
 
-    def _near_dormant(self, _arg, g1, g2):
-        """An awake model space near a sleeping one: collide; contacts wake the sleeper."""
-        before = self._contacts
-        ode.collide2(g1, g2, None, self._near)
-        if self._contacts != before:
-            self._wake.append(g2 if g2 in self._dormant else g1)
-
     def _sort_sleepers(self):
-        """Move models whose bodies all sleep out of the awake space (and back)."""
-        for sp, bodies in self._space_bodies.items():
-            asleep = not any(b.isEnabled() for b in bodies)
-            if asleep and sp not in self._dormant:
-                self.dynamic_space.remove(sp)
-                self.dormant_space.add(sp)
-                self._dormant.add(sp)
-            elif not asleep and sp in self._dormant:
+        """Models whose bodies all sleep stop colliding with the static world (and back)."""
+        for sp in list(self._awake):
+            if not any(b.isEnabled() for b in self._space_bodies[sp]):
+                self._awake.remove(sp)
+                self._dormant.append(sp)
+        for sp in list(self._dormant):
+            if any(b.isEnabled() for b in self._space_bodies[sp]):
                 self._rouse(sp)
 
     def _rouse(self, sp):
         if sp in self._dormant:
-            self.dormant_space.remove(sp)
-            self.dynamic_space.add(sp)
-            self._dormant.discard(sp)
+            self._dormant.remove(sp)
+            self._awake.append(sp)
             for b in self._space_bodies[sp]:
                 b.enable()
 
     def step(self, n=1):
         dt = self.dt
-        dynamic = self.dynamic_space
         static = self.static_space
         near = self._near
         for _ in range(n):
             for sj in self._active:
                 sj._pre_step(dt)
-            ode.collide2(dynamic, static, None, near)   # model spaces vs the static world
-            dynamic.collide(None, near)                 # model spaces vs each other
-            if self._dormant:
-                ode.collide2(dynamic, self.dormant_space, None, self._near_dormant)
-                if self._wake:
-                    for sp in self._wake:
+            awake = self._awake
+            for i, sp in enumerate(awake):
+                ode.collide2(sp, static, None, near)        # model vs the static world
+                for other in awake[i + 1:]:
+                    ode.collide2(sp, other, None, near)     # models vs each other
+                for other in self._dormant:
+                    before = self._contacts
+                    ode.collide2(sp, other, None, near)     # a touch wakes the sleeper
+                    if self._contacts != before:
+                        self._wake.append(other)
+            if self._wake:
+                for sp in self._wake:
+                    if sp in self._dormant:
                         self._rouse(sp)
                         ode.collide2(sp, static, None, near)
-                    self._wake = []
+                self._wake = []
             for sp in self._self_collide:
                 sp.collide(None, near)
             if self.use_step:
@@ -773,6 +758,30 @@ class PhysicsWorld:
                              static_pose=link.pose() if link.body is None else Pose())
         inst.laser_retro = getattr(desc, 'laser_retro', 0.0)
         return inst
+
+
+def _boxes_for_meshes(desc):
+    """Debian's PyODE is built without ODE's triangle-mesh collider (TriMeshData raises
+    NotImplementedError), so a mesh collision becomes the mesh's bounding box, with a warning.
+    The description itself is changed, so the ray caster sees exactly what the physics does."""
+    for link in desc.links:
+        for c in link.collisions:
+            g = c.geometry
+            if g.kind != 'mesh':
+                continue
+            if g.vertices is None or len(g.vertices) == 0:
+                raise ModelError("%s: collision '%s' of link '%s': mesh '%s' has no triangles"
+                                 % (desc.source or 'model', c.name, link.name,
+                                    g.uri or g.filename))
+            lo = g.vertices.min(axis=0)
+            hi = g.vertices.max(axis=0)
+            size = tuple(float(max(v, 1e-4)) for v in hi - lo)
+            c.pose = c.pose * Pose((lo + hi) / 2)
+            c.geometry = Geometry('box', size=size)
+            desc.warnings.append(
+                "%s: collision '%s' of link '%s': mesh '%s' simulated as its bounding box "
+                "%.3f x %.3f x %.3f m (Debian's PyODE has no triangle-mesh collider)"
+                % (desc.source or desc.name, c.name, link.name, g.uri or g.filename, *size))
 
 
 def physics_from_world(world_desc):
