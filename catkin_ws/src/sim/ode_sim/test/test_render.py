@@ -299,3 +299,14 @@ def test_no_egl_is_one_clear_error(tmp_path):
     line = out.stdout.strip()
     assert line.startswith('ERR ode_sim.render: cannot create an offscreen OpenGL')
     assert 'libegl-mesa0' in line and '\n' not in line
+
+
+def test_camera_inside_its_own_box_sees_out():
+    """Back faces are culled as in Gazebo: the textbook's camera sits in the middle of a 5 cm
+    black cube with a 2 cm near clip and still sees the red box in front of it."""
+    r = Renderer(160, 120, HFOV, near=0.02, depth=False)
+    housing = shape('camera', box((0.05, 0.05, 0.05)), color=(0, 0, 0, 1))
+    r.set_scene([housing, shape('target', box(), xyz=(3, 0, 0))])
+    rgb, _ = r.render(Pose())
+    assert red_mask(rgb)[50:70, 70:90].all()
+    assert not (rgb.max(axis=-1) == 0).all()

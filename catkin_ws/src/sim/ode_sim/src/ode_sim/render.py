@@ -20,8 +20,10 @@ depth image (everything outside (pointCloudCutoff, pointCloudCutoffMax)); the RO
 layer maps inf to NaN, this module keeps inf so that comparisons stay meaningful.
 
 Lighting: scene ambient x colour, plus per light a Lambert term (light diffuse x colour) and a
-little Blinn-Phong specular; both sides of a triangle are lit (normals face the viewer), no
-culling, no shadows, colours are opaque (alpha ignored).
+little Blinn-Phong specular; back faces are culled as in Gazebo (OGRE), so a camera inside its
+own link's box sees out of it (the textbook's camera sits inside a 5 cm cube with a 2 cm near
+clip); triangles are wound counter-clockwise seen from outside; no shadows, colours are opaque
+(alpha ignored).
 """
 import math
 import queue
@@ -325,7 +327,8 @@ class Renderer:
     def _gl_render(self, viewproj, eye, models, rgb, zbuf):
         ctx, prog = _context(), self._prog
         self._fbo.use()
-        ctx.enable_only(ctx.DEPTH_TEST)
+        ctx.enable_only(ctx.DEPTH_TEST | ctx.CULL_FACE)
+        ctx.front_face = 'cw'          # the projection flips Y (image rows top first)
         self._fbo.clear(*self._background, depth=1.0)
         prog['u_viewproj'].write(viewproj)
         prog['u_ambient'].value = tuple(self._ambient)

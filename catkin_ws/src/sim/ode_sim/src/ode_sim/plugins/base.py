@@ -151,6 +151,27 @@ class Plugin:
     def topic(self, name):
         return _topic_join(self.ns, name)
 
+    def tf_frame(self, name):
+        """A frame id as gazebo_plugins resolve it: tf::resolve(tf_prefix, name), tf_prefix
+        searched upwards from the plugin's namespace (e.g. /robot2/tf_prefix, /tf_prefix)."""
+        if name.startswith('/'):
+            return name.lstrip('/')
+        prefix = self._tf_prefix()
+        return (prefix.strip('/') + '/' + name) if prefix.strip('/') else name
+
+    def _tf_prefix(self):
+        if not rospy.core.is_initialized():
+            return ''
+        parts = [p for p in self.ns.split('/') if p]
+        for i in range(len(parts), -1, -1):
+            key = '/' + '/'.join(parts[:i] + ['tf_prefix'])
+            try:
+                if rospy.has_param(key):
+                    return str(rospy.get_param(key))
+            except Exception:           # master gone: no prefix
+                return ''
+        return ''
+
     def link(self, name):
         """The SimLink carrying `name` (a link, or a frame lumped into a link)."""
         if name in self.model.links:

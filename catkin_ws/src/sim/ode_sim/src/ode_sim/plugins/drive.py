@@ -34,11 +34,6 @@ LEFT, RIGHT = 0, 1
 ODOM_POSE_COVARIANCE = {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}
 
 
-def _frame(name):
-    """tf2 frame ids carry no leading slash."""
-    return name.lstrip('/')
-
-
 class _Drive(Plugin):
     """What both drives share: cmd_vel, ground-truth base pose, odometry message, wheel motors."""
 
@@ -50,6 +45,8 @@ class _Drive(Plugin):
     def _setup_base(self, base_frame, odom_frame):
         self.base_frame = base_frame
         self.odom_frame = odom_frame
+        self.base_id = self.tf_frame(base_frame)    # with the tf_prefix, as published
+        self.odom_id = self.tf_frame(odom_frame)
         self.base_link = None
         try:
             self.base_link = self.link(base_frame)
@@ -223,8 +220,8 @@ class DiffDrive(_Drive):
         for i, v in ODOM_POSE_COVARIANCE.items():
             msg.pose.covariance[i] = v
         msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = _frame(self.odom_frame)
-        msg.child_frame_id = _frame(self.base_frame)
+        msg.header.frame_id = self.odom_id
+        msg.child_frame_id = self.base_id
         return msg, pose
 
     def publish_odometry(self):
@@ -241,7 +238,8 @@ class DiffDrive(_Drive):
             parent_pose = j.parent.pose() if j.parent is not None else Pose()
             rel = parent_pose.inverse() * j.child.pose()
             parent = j.parent.name if j.parent is not None else 'world'
-            out.append(transform_msg(stamp, parent, j.child.name, rel))
+            out.append(transform_msg(stamp, self.tf_frame(parent), self.tf_frame(j.child.name),
+                                     rel))
         return out
 
     def publish_wheel_transforms(self):
@@ -329,8 +327,8 @@ class SkidSteerDrive(_Drive):
             cov[14] = cov[21] = cov[28] = 1e12
             cov[35] = self.covariance_yaw
         msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = _frame(self.odom_frame)
-        msg.child_frame_id = _frame(self.base_frame)
+        msg.header.frame_id = self.odom_id
+        msg.child_frame_id = self.base_id
         return msg, pose
 
     def publish_odometry(self):
