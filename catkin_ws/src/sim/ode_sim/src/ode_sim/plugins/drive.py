@@ -42,6 +42,22 @@ class _Drive(Plugin):
         for j, w in zip(joints, speeds):
             j.set_velocity(w, fmax=fmax)
 
+    def _stamped(self, msg):
+        """Sim-time stamp and the odom -> base frame ids (tf_prefix resolved)."""
+        msg.header.stamp = self.ctx.now()
+        msg.header.frame_id = self.odom_id
+        msg.child_frame_id = self.base_id
+        return msg
+
+    def publish_odometry(self):
+        """Odometry on the odometry topic, and odom -> base TF when the plugin's tag says so
+        (publishOdomTF for the diff drive, broadcastTF for the skid steer)."""
+        msg, pose = self.odometry()
+        if self.odom_tf:
+            self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
+                                        msg.child_frame_id, pose)])
+        self.odom_pub.publish(msg)
+
     def _setup_base(self, base_frame, odom_frame):
         self.base_frame = base_frame
         self.odom_frame = odom_frame
@@ -219,17 +235,11 @@ class DiffDrive(_Drive):
             pose = self.ground_truth_odometry(msg)
         for i, v in ODOM_POSE_COVARIANCE.items():
             msg.pose.covariance[i] = v
-        msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = self.odom_id
-        msg.child_frame_id = self.base_id
-        return msg, pose
+        return self._stamped(msg), pose
 
-    def publish_odometry(self):
-        msg, pose = self.odometry()
-        if self.publish_odom_tf:
-            self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
-                                        msg.child_frame_id, pose)])
-        self.odom_pub.publish(msg)
+    @property
+    def odom_tf(self):
+        return self.publish_odom_tf
 
     def wheel_transforms(self):
         stamp = self.ctx.now()
@@ -326,17 +336,11 @@ class SkidSteerDrive(_Drive):
             cov[7] = self.covariance_y
             cov[14] = cov[21] = cov[28] = 1e12
             cov[35] = self.covariance_yaw
-        msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = self.odom_id
-        msg.child_frame_id = self.base_id
-        return msg, pose
+        return self._stamped(msg), pose
 
-    def publish_odometry(self):
-        msg, pose = self.odometry()
-        if self.broadcast_tf:
-            self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
-                                        msg.child_frame_id, pose)])
-        self.odom_pub.publish(msg)
+    @property
+    def odom_tf(self):
+        return self.broadcast_tf
 
     def shutdown(self):
         close(self.cmd_sub, self.odom_pub)
