@@ -17,6 +17,7 @@ from ode_sim.model import (Collision, Geometry, Inertial, Light, Link, Model, Mo
 from ode_sim.physics import PhysicsWorld
 from ode_sim.plugins import camera as camera_plugin
 from ode_sim.plugins.base import PluginContext
+from ode_sim.plugins.rosio import MemoryPublisher
 from ode_sim.transforms import Pose
 
 W, H = 64, 48
@@ -27,27 +28,10 @@ HALF = 0.5              # the box is 1 m: its face spans +-0.5 m around the opti
 CAM_Z = 0.5
 
 
-class FakePub:
-    def __init__(self, topic, data_class, queue_size=None, **kw):
-        self.topic, self.data_class, self.queue_size = topic, data_class, queue_size
-        self.connections = 0
-        self.msgs = []
-        self.unregistered = False
-
-    def get_num_connections(self):
-        return self.connections
-
-    def publish(self, msg):
-        assert isinstance(msg, self.data_class)
-        self.msgs.append(msg)
-
-    def unregister(self):
-        self.unregistered = True
-
-
 @pytest.fixture(autouse=True)
 def fake_publishers(monkeypatch):
-    monkeypatch.setattr(camera_plugin, 'Publisher', FakePub)
+    # no rospy node here: plugins get MemoryPublishers; nobody subscribes until a test says so
+    monkeypatch.setattr(MemoryPublisher, 'DEFAULT_CONNECTIONS', 0)
 
 
 def scene_models():
@@ -127,7 +111,7 @@ def test_red_box_fills_the_pinhole_pixels(release):
     pw, ctx, p = setup()
     release(p)
     one_frame(p, pw)
-    msg = p.image_pub.msgs[-1]
+    msg = p.image_pub.sent[-1]
     assert (msg.width, msg.height, msg.encoding, msg.step) == (W, H, 'rgb8', 3 * W)
     assert msg.header.frame_id == 'camera_optical'
     img = image_array(msg).astype(int)
@@ -141,11 +125,11 @@ def test_red_box_fills_the_pinhole_pixels(release):
 def test_topics_and_camera_info_as_gazebo_defaults(release):
     pw, ctx, p = setup()
     release(p)
-    assert p.image_pub.topic == '/cam1/image_raw' and p.image_pub.queue_size == 2
-    assert p.info_pub.topic == '/cam1/camera_info'
+    assert p.image_pub.name == '/cam1/image_raw' and p.image_pub.queue_size == 2
+    assert p.info_pub.name == '/cam1/camera_info'
     one_frame(p, pw, ('image_pub', 'info_pub'))
-    info = p.info_pub.msgs[-1]
-    img = p.image_pub.msgs[-1]
+    info = p.info_pub.sent[-1]
+    img = p.image_pub.sent[-1]
     assert info.header.stamp == img.header.stamp
     assert info.header.frame_id == 'camera_optical'
     assert (info.width, info.height) == (W, H)
@@ -163,12 +147,12 @@ def test_models_spawned_later_show_up(release):
     pw.add_model(Model('green', static=True, pose=Pose((1.5, 0, CAM_Z)), links=[Link(
         'link', visuals=[Visual('v', g, color=(0, 1, 0, 1))])]))
     one_frame(p, pw)
-    before, after = (image_array(m)[H // 2, W // 2] for m in p.image_pub.msgs[-2:])
+    before, after = (image_array(m)[H // 2, W // 2] for m in p.image_pub.sent[-2:])
     assert before[0] > 150 and before[1] < 60
     assert after[1] > 150 and after[0] < 60
     pw.remove_model('green')
     one_frame(p, pw)
-    assert image_array(p.image_pub.msgs[-1])[H // 2, W // 2][0] > 150
+    assert image_array(p.image_pub.sent[-1])[H // 2, W // 2][0] > 150
 
 
 def test_image_orientation_left_is_plus_y_up_is_plus_z(release):
@@ -181,7 +165,7 @@ def test_image_orientation_left_is_plus_y_up_is_plus_z(release):
         pw.add_model(Model(name, static=True, pose=Pose(xyz), links=[Link(
             'link', visuals=[Visual('v', g, color=color)])]))
     one_frame(p, pw)
-    img = image_array(p.image_pub.msgs[-1]).astype(int)
+    img = image_array(p.image_pub.sent[-1]).astype(int)
     green = (img[:, :, 1] > 150) & (img[:, :, 0] < 60)
     blue = (img[:, :, 2] > 150) & (img[:, :, 0] < 60)
     rows, cols = np.nonzero(green)
@@ -199,12 +183,12 @@ def test_camera_info_tags():
     p.info_pub.connections = 1
     p.update()                               # camera_info alone: published without a render
     assert p._renderer is None and p.frames == 0
-    info = p.info_pub.msgs[-1]
+    info = p.info_pub.sent[-1]
     assert list(info.K) == pytest.approx([50, 0, 30, 0, 50, 20, 0, 0, 1])
     assert info.P[3] == pytest.approx(-50 * 0.07)
     assert list(info.D) == pytest.approx([0.1, 0, 0, 0.02, 0.3])
-    assert p.image_pub.topic == '/ns1/c/rgb/image'
-    assert p.info_pub.topic == '/abs/info'
+    assert p.image_pub.name == '/ns1/c/rgb/image'
+    assert p.info_pub.name == '/abs/info'
     assert info.header.frame_id == 'ns1/cam_frame'
 
 
@@ -214,13 +198,13 @@ def test_no_subscriber_no_render_and_update_rate(release):
     for _ in range(200):
         pw.step(1)
         p.update()
-    assert p._renderer is None and p.image_pub.msgs == []
+    assert p._renderer is None and p.image_pub.sent == []
     p.image_pub.connections = 1
     for _ in range(1000):
         pw.step(1)
         p.update()
         p.wait(10)
-    stamps = [m.header.stamp.to_sec() for m in p.image_pub.msgs]
+    stamps = [m.header.stamp.to_sec() for m in p.image_pub.sent]
     assert len(stamps) == 10
     assert np.diff(stamps) == pytest.approx([0.1] * 9, abs=1.5e-3)
 
@@ -233,7 +217,7 @@ def test_plugin_update_rate_throttles_below_the_sensor_rate(release):
         pw.step(1)
         p.update()
         p.wait(10)
-    assert len(p.image_pub.msgs) == 10
+    assert len(p.image_pub.sent) == 10
 
 
 def test_encodings(release):
@@ -242,7 +226,7 @@ def test_encodings(release):
         pw, ctx, p = setup(fmt=fmt)
         release(p)
         one_frame(p, pw)
-        msg = p.image_pub.msgs[-1]
+        msg = p.image_pub.sent[-1]
         assert msg.encoding == enc and msg.step == ch * W and len(msg.data) == ch * W * H
         if enc == 'bgr8':
             img = image_array(msg)
@@ -258,7 +242,7 @@ def test_image_noise(release):
     release(p)
     p.rng = np.random.default_rng(1)
     one_frame(p, pw)
-    img = image_array(p.image_pub.msgs[-1]).astype(float)
+    img = image_array(p.image_pub.sent[-1]).astype(float)
     assert img[:5, :, 1].std() > 2
 
 
@@ -271,39 +255,39 @@ def kinect(**kw):
 def test_kinect_depth_image_and_topics(release):
     pw, ctx, p = kinect()
     release(p)
-    assert p.depth_pub.topic == '/cam1/depth/image_raw'
-    assert p.depth_info_pub.topic == '/cam1/depth/camera_info'
-    assert p.cloud_pub.topic == '/cam1/points'
-    assert p.image_pub.topic == '/cam1/image_raw'
+    assert p.depth_pub.name == '/cam1/depth/image_raw'
+    assert p.depth_info_pub.name == '/cam1/depth/camera_info'
+    assert p.cloud_pub.name == '/cam1/points'
+    assert p.image_pub.name == '/cam1/image_raw'
     one_frame(p, pw, ('depth_pub', 'depth_info_pub'))
-    msg = p.depth_pub.msgs[-1]
+    msg = p.depth_pub.sent[-1]
     assert msg.encoding == '32FC1' and msg.step == 4 * W and msg.is_bigendian == 0
     assert msg.header.frame_id == 'camera_optical'
     d = np.frombuffer(msg.data, dtype='<f4').reshape(H, W)
     inside, outside = box_pixels()
     assert d[inside] == pytest.approx(D, rel=0.02)
     assert np.isnan(d[outside]).all()               # nothing hit: NaN, as the original
-    assert p.depth_info_pub.msgs and p.image_pub.msgs == []
-    assert p.depth_info_pub.msgs[-1].header.stamp == msg.header.stamp
+    assert p.depth_info_pub.sent and p.image_pub.sent == []
+    assert p.depth_info_pub.sent[-1].header.stamp == msg.header.stamp
 
 
 def test_kinect_cutoffs(release):
     pw, ctx, p = kinect(tags={'cameraName': 'k', 'pointCloudCutoffMax': '2.5'})
     release(p)
     one_frame(p, pw, ('depth_pub',))
-    d = np.frombuffer(p.depth_pub.msgs[-1].data, dtype='<f4')
+    d = np.frombuffer(p.depth_pub.sent[-1].data, dtype='<f4')
     assert np.isnan(d).all()                         # the box at 3 m is beyond 2.5 m
     pw, ctx, p = kinect(tags={'cameraName': 'k', 'pointCloudCutoff': '3.5'})
     release(p)
     one_frame(p, pw, ('depth_pub',))
-    assert np.isnan(np.frombuffer(p.depth_pub.msgs[-1].data, dtype='<f4')).all()
+    assert np.isnan(np.frombuffer(p.depth_pub.sent[-1].data, dtype='<f4')).all()
 
 
 def test_kinect_point_cloud(release):
     pw, ctx, p = kinect()
     release(p)
     one_frame(p, pw, ('cloud_pub',))
-    msg = p.cloud_pub.msgs[-1]
+    msg = p.cloud_pub.sent[-1]
     assert (msg.height, msg.width, msg.point_step, msg.row_step) == (H, W, 32, 32 * W)
     assert [(f.name, f.offset, f.datatype, f.count) for f in msg.fields] == [
         ('x', 0, 7, 1), ('y', 4, 7, 1), ('z', 8, 7, 1), ('rgb', 16, 7, 1)]
@@ -323,7 +307,7 @@ def test_kinect_point_cloud(release):
     # rgb bytes in image order (R first), as the original writes them
     assert raw[j, i, 16] > 150 and raw[j, i, 17] < 60 and raw[j, i, 18] < 60
     # the cloud needs the image: it is rendered (published only to image subscribers)
-    assert p.image_pub.msgs == []
+    assert p.image_pub.sent == []
 
 
 def test_depth_camera_has_no_upper_cutoff(release):
@@ -331,7 +315,7 @@ def test_depth_camera_has_no_upper_cutoff(release):
                         tags={'cameraName': 'd', 'pointCloudCutoffMax': '2.5'})
     release(p)
     one_frame(p, pw, ('depth_pub',))
-    d = np.frombuffer(p.depth_pub.msgs[-1].data, dtype='<f4').reshape(H, W)
+    d = np.frombuffer(p.depth_pub.sent[-1].data, dtype='<f4').reshape(H, W)
     inside, outside = box_pixels()
     assert d[inside] == pytest.approx(D, rel=0.02)
     assert np.isposinf(d[outside]).all()
@@ -359,7 +343,6 @@ def _integration_main():
     import time
     from sensor_msgs.msg import CameraInfo, Image, PointCloud2
     rospy.init_node('camera_plugin_check', disable_signals=True)
-    camera_plugin.Publisher = rospy.Publisher
     pw, ctx, p = kinect(update_rate=20.0)
     got = {'image': [], 'info': [], 'depth': [], 'points': []}
     subs = [rospy.Subscriber('/cam1/image_raw', Image, got['image'].append),

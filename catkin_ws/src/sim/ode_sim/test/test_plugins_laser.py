@@ -16,6 +16,7 @@ from ode_sim.model import (Collision, Geometry, Inertial, Link, Model, ModelErro
 from ode_sim.physics import PhysicsWorld
 from ode_sim.plugins import laser as laser_plugin
 from ode_sim.plugins.base import PluginContext
+from ode_sim.plugins.rosio import MemoryPublisher
 from ode_sim.transforms import Pose
 
 # sensor origin on the robot link; the robot stands at the world origin (yaw 0) at z = 0.5
@@ -25,29 +26,10 @@ WALLS = {'east': ((3.1, 0, 1), (0.2, 10, 2)), 'north': ((0, 2.1, 1), (10, 0.2, 2
          'south': ((0, -1.1, 1), (10, 0.2, 2))}
 
 
-class FakePub:
-    """rospy.Publisher stand-in: counts connections, keeps published messages."""
-
-    def __init__(self, topic, data_class, queue_size=None, **kw):
-        self.topic, self.data_class, self.queue_size = topic, data_class, queue_size
-        self.connections = 0
-        self.msgs = []
-        self.unregistered = False
-
-    def get_num_connections(self):
-        return self.connections
-
-    def publish(self, msg):
-        assert isinstance(msg, self.data_class)
-        self.msgs.append(msg)
-
-    def unregister(self):
-        self.unregistered = True
-
-
 @pytest.fixture(autouse=True)
 def fake_publishers(monkeypatch):
-    monkeypatch.setattr(laser_plugin, 'Publisher', FakePub)
+    # no rospy node here: plugins get MemoryPublishers; nobody subscribes until a test says so
+    monkeypatch.setattr(MemoryPublisher, 'DEFAULT_CONNECTIONS', 0)
 
 
 def room():
@@ -106,8 +88,8 @@ def test_ranges_to_walls_at_known_distances():
     p.pub.connections = 1
     pw.step(1)
     p.update()
-    assert len(p.pub.msgs) == 1
-    msg = p.pub.msgs[0]
+    assert len(p.pub.sent) == 1
+    msg = p.pub.sent[0]
     r = np.array(msg.ranges)
     assert len(r) == 361
     sx = SENSOR_XYZ[0]
@@ -128,8 +110,8 @@ def test_message_frame_angles_limits_and_stamp():
     p.pub.connections = 1
     pw.step(250)
     p.update()
-    msg = p.pub.msgs[-1]
-    assert p.pub.topic == '/scan' and p.pub.queue_size == 1
+    msg = p.pub.sent[-1]
+    assert p.pub.name == '/scan' and p.pub.queue_size == 1
     assert msg.header.frame_id == 'laser_link'
     assert msg.header.stamp.to_sec() == pytest.approx(0.25)
     assert msg.angle_min == pytest.approx(-math.pi)
@@ -144,7 +126,7 @@ def test_range_max_clips_far_walls_to_inf():
     pw, ctx, p = setup(range_max=2.5)
     p.pub.connections = 1
     p.update()
-    r = np.array(p.pub.msgs[-1].ranges)
+    r = np.array(p.pub.sent[-1].ranges)
     assert r[index_of(0)] == math.inf                  # 2.9 m wall beyond 2.5 m
     assert r[index_of(90)] == pytest.approx(2.0, abs=0.01)
 
@@ -153,7 +135,7 @@ def test_rotated_robot_and_sensor_pose_compose():
     pw, ctx, p = setup(yaw=math.pi / 2)
     p.pub.connections = 1
     p.update()
-    r = np.array(p.pub.msgs[-1].ranges)
+    r = np.array(p.pub.sent[-1].ranges)
     # the sensor sits at (0, 0.1) looking +Y: the north wall is 1.9 m ahead, east 3 m right
     assert r[index_of(0)] == pytest.approx(1.9, abs=0.01)
     assert r[index_of(-90)] == pytest.approx(3.0, abs=0.01)
@@ -166,7 +148,7 @@ def test_sensor_moves_with_its_link():
     m = pw.models['bot']
     m.set_pose(Pose((1.0, 0, 0.5)))
     p.update()
-    assert p.pub.msgs[-1].ranges[index_of(0)] == pytest.approx(1.9, abs=0.01)
+    assert p.pub.sent[-1].ranges[index_of(0)] == pytest.approx(1.9, abs=0.01)
 
 
 def test_own_collision_is_seen_below_its_extent_as_gazebo():
@@ -195,19 +177,19 @@ def test_publishes_only_while_subscribed_at_the_sensor_rate():
     for _ in range(300):
         pw.step(1)
         p.update()
-    assert p.pub.msgs == []
+    assert p.pub.sent == []
     p.pub.connections = 2
     for _ in range(1000):                # 1 s at 1 kHz physics
         pw.step(1)
         p.update()
-    assert len(p.pub.msgs) == 10
-    stamps = [m.header.stamp.to_sec() for m in p.pub.msgs]
+    assert len(p.pub.sent) == 10
+    stamps = [m.header.stamp.to_sec() for m in p.pub.sent]
     assert np.diff(stamps) == pytest.approx([0.1] * 9, abs=1.5e-3)
     p.pub.connections = 0
     for _ in range(300):
         pw.step(1)
         p.update()
-    assert len(p.pub.msgs) == 10
+    assert len(p.pub.sent) == 10
 
 
 def test_update_rate_zero_is_every_step():
@@ -216,23 +198,23 @@ def test_update_rate_zero_is_every_step():
     for _ in range(20):
         pw.step(1)
         p.update()
-    assert len(p.pub.msgs) == 20
+    assert len(p.pub.sent) == 20
 
 
 def test_defaults_topic_and_frame_world_slash_stripped():
     pw, ctx, p = setup(tags={})
-    assert p.pub.topic == '/world'
+    assert p.pub.name == '/world'
     assert p.frame_id == 'world'          # tf::resolve strips the leading '/'
 
 
 def test_namespace_and_frame_resolution():
     pw, ctx, p = setup(tags={'robotNamespace': 'r1', 'topicName': 'scan', 'frameName': 'laser'})
-    assert p.pub.topic == '/r1/scan'
+    assert p.pub.name == '/r1/scan'
     assert p.frame_id == 'r1/laser'        # tf_prefix = the namespace, as gazebo_plugins do
     pw, ctx, p = setup(tags={'robotNamespace': '/', 'topicName': 'scan', 'frameName': '/laser'})
-    assert p.pub.topic == '/scan' and p.frame_id == 'laser'
+    assert p.pub.name == '/scan' and p.frame_id == 'laser'
     pw, ctx, p = setup(tags={'robotNamespace': '', 'topicName': '/abs/scan'})
-    assert p.pub.topic == '/abs/scan' and p.ns == 'bot'     # empty namespace: the model name
+    assert p.pub.name == '/abs/scan' and p.ns == 'bot'     # empty namespace: the model name
     assert laser_plugin.tf_resolve('/p', 'f') == 'p/f'
     assert laser_plugin.tf_resolve('', '/f') == 'f'
 
@@ -251,7 +233,7 @@ def test_gpu_laser_same_behaviour_and_sensor_on_a_lumped_frame():
     pw, ctx, p = setup(plugin='libgazebo_ros_gpu_laser.so', sensor_type='gpu_ray')
     p.pub.connections = 1
     p.update()
-    assert p.pub.msgs[-1].ranges[index_of(0)] == pytest.approx(2.9, abs=0.01)
+    assert p.pub.sent[-1].ranges[index_of(0)] == pytest.approx(2.9, abs=0.01)
     # a sensor named after a frame lumped into base_link (0.05 m ahead of it)
     pw, ctx, p = setup(sensor_link='laser_mount')
     assert p.measure()[0][index_of(0)] == pytest.approx(2.85, abs=0.01)
@@ -275,7 +257,6 @@ def _integration_main():
     import time
     from sensor_msgs.msg import LaserScan
     rospy.init_node('laser_plugin_check', disable_signals=True)
-    laser_plugin.Publisher = rospy.Publisher
     pw, ctx, p = setup(update_rate=20.0)
     got = []
     sub = rospy.Subscriber('/scan', LaserScan, got.append, queue_size=100)
@@ -306,5 +287,4 @@ def test_real_roscore_subscriber_receives_scans(roscore):
 
 
 if __name__ == '__main__' and sys.argv[1:] == ['integration']:
-    laser_plugin.Publisher = rospy.Publisher
     _integration_main()

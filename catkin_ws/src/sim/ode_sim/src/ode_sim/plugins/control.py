@@ -32,7 +32,7 @@ import time
 import rospy
 
 from .base import Plugin
-from .state import close, publisher, ros_up, subscriber
+from .rosio import close, publisher, ros_up, subscriber
 
 EFFORT = 'EffortJointInterface'
 VELOCITY = 'VelocityJointInterface'

@@ -27,7 +27,8 @@ import math
 import rospy
 
 from .base import Plugin
-from .state import close, fill_pose, publisher, subscriber, transform_msg
+from .rosio import close, publisher, subscriber
+from .state import fill_pose, transform_msg
 from ..transforms import Pose, quat_from_rpy
 
 LEFT, RIGHT = 0, 1

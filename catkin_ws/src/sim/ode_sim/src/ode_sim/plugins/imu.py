@@ -26,7 +26,8 @@ import numpy as np
 import rospy
 
 from .base import Plugin
-from .state import close, fill_vector, parse_vector, publisher, service, subscribed, gaussian
+from .rosio import close, publisher, service, subscribed
+from .state import fill_vector, gaussian, parse_vector
 from ..transforms import Pose, quat_from_rpy, quat_multiply, quat_conjugate, quat_to_matrix
 
 

@@ -25,8 +25,8 @@ import rospy
 from sensor_msgs.msg import LaserScan
 
 from .base import Plugin
+from .rosio import publisher
 
-Publisher = rospy.Publisher     # tests replace it with a fake
 
 #: Gazebo's ray sensor does not exclude the link carrying it; True drops that link's shapes.
 EXCLUDE_OWN_LINK = False
@@ -80,7 +80,7 @@ class LaserPlugin(Plugin):
                                                               warn=False).strip())
         topic = self.param('topicName', '/world', warn=False).strip()
         self.topic_name = self.topic(topic) if topic else ''
-        self.pub = Publisher(self.topic_name, LaserScan, queue_size=1) if topic else None
+        self.pub = publisher(self.topic_name, LaserScan, queue_size=1) if topic else None
         self.link_obj = self.link(sensor.link)
         self.exclude = {(model.name, self.link_obj.name)} if EXCLUDE_OWN_LINK else None
         self.set_rate(sensor.update_rate)

@@ -13,9 +13,8 @@ joint_state_publisher (gazebo_ros_joint_state_publisher.cpp): `jointName` (comma
 `updateRate` (100 Hz), `robotNamespace` (default: the model name). Publishes
 sensor_msgs/JointState on `joint_states` (position, velocity, and the applied effort).
 
-This module also holds the small ROS helpers the other built-in plugins share: publishers,
-subscribers and services are created only when rospy is initialised; otherwise (unit tests)
-`publisher()` returns a MemoryPublisher that keeps what was published.
+This module also holds small message helpers the other plugins share (parse_vector,
+fill_pose, fill_vector, transform_msg, gaussian).
 """
 import random
 
@@ -23,66 +22,8 @@ import numpy as np
 import rospy
 
 from .base import Plugin
+from .rosio import close, publisher, subscribed
 from ..transforms import Pose, quat_from_rpy
-
-
-# --------------------------------------------------------------------------- ROS helpers
-class MemoryPublisher:
-    """Stands in for rospy.Publisher when no node is initialised: `sent` holds the messages."""
-
-    def __init__(self, name, data_class=None):
-        self.name = name
-        self.data_class = data_class
-        self.sent = []
-        self.connections = 1
-
-    def publish(self, msg):
-        self.sent.append(msg)
-
-    def get_num_connections(self):
-        return self.connections
-
-    def unregister(self):
-        pass
-
-
-def ros_up():
-    return rospy.core.is_initialized()
-
-
-def publisher(name, data_class, queue_size=1, latch=False):
-    if ros_up():
-        return rospy.Publisher(name, data_class, queue_size=queue_size, latch=latch)
-    return MemoryPublisher(name, data_class)
-
-
-def subscriber(name, data_class, callback, queue_size=1):
-    if ros_up():
-        return rospy.Subscriber(name, data_class, callback, queue_size=queue_size)
-    return None
-
-
-def service(name, service_class, handler):
-    if ros_up():
-        return rospy.Service(name, service_class, handler)
-    return None
-
-
-def close(*handles):
-    for h in handles:
-        if h is None:
-            continue
-        try:
-            if hasattr(h, 'unregister'):
-                h.unregister()
-            elif hasattr(h, 'shutdown'):
-                h.shutdown()
-        except Exception:       # shutting down anyway
-            pass
-
-
-def subscribed(pub):
-    return pub is not None and pub.get_num_connections() > 0
 
 
 def parse_vector(plugin, tag, default=(0.0, 0.0, 0.0), warn=False):
