@@ -6,8 +6,11 @@ A test makes a fresh catkin workspace in a temporary directory, runs the chapter
 `source scripts/env.sh` and `source devel/setup.bash`, and checks what those commands print.
 """
 import os
+import re
+import shutil
 import signal
 import subprocess
+import textwrap
 import time
 
 import yaml
@@ -81,6 +84,38 @@ def make_workspace(root):
     out = sh(['catkin', 'init'], shell_env(), cwd=ws, timeout=120)
     assert 'Initialized new catkin workspace' in out or 'Workspace configuration appears valid' in out, out
     return ws
+
+
+def create_package(ws, pkg, deps, dirs, reference, files):
+    """`catkin_create_pkg PKG DEPS…` in ws/src, `mkdir DIRS…` in it, and the chapter's files
+    (`files`: {subdir: [names]}) copied from the reference package, standing for what the
+    student types from the text. Returns (package path, catkin_create_pkg output)."""
+    src = os.path.join(ws, 'src')
+    out = sh(['catkin_create_pkg', pkg] + list(deps), shell_env(), cwd=src)
+    path = os.path.join(src, pkg)
+    sh(['mkdir'] + list(dirs), shell_env(), cwd=path)
+    for d, names in files.items():
+        for name in names:
+            shutil.copy2(os.path.join(reference, d, name), os.path.join(path, d, name))
+    return path, out
+
+
+def readme_listing(readme, start):
+    """The fenced code block of a task text whose (dedented) text begins with `start`."""
+    with open(readme) as f:
+        text = f.read()
+    for m in re.finditer(r'```\w*\n(.*?)```', text, re.S):
+        block = textwrap.dedent(m.group(1))
+        if block.startswith(start):
+            return block
+    raise AssertionError('no listing starting with %r in %s' % (start, readme))
+
+
+def write_script(path, text):
+    """A listing typed into an executable script file (chmod +x)."""
+    with open(path, 'w') as f:
+        f.write(text)
+    os.chmod(path, 0o755)
 
 
 def catkin_build(ws):

@@ -9,7 +9,6 @@ course's model files (reference: catkin_ws/src/course/my_robot_model), `catkin b
 import importlib.util
 import os
 import re
-import shutil
 import subprocess
 import time
 
@@ -34,16 +33,12 @@ def workspace(tmp_path_factory):
     if not os.path.isdir(REFERENCE):
         pytest.fail('the reference package %s is missing' % REFERENCE)
     ws = S.make_workspace(tmp_path_factory.mktemp('task3'))
-    src = os.path.join(ws, 'src')
-    out = S.sh(['catkin_create_pkg', PKG, 'rospy', 'std_msgs', 'roscpp'], S.shell_env(), cwd=src)
-    pkg = os.path.join(src, PKG)
-    S.sh(['mkdir', 'scripts', 'launch', 'urdf', 'models'], S.shell_env(), cwd=pkg)
-    for d, names in (('urdf', ['my_first_model.urdf', 'diff_robot_model.urdf.xacro', 'materials.xacro',
-                               'wheel.xacro', 'inertial.xacro', 'rviz_conf.rviz']),
-                     ('launch', ['robot.launch', 'first_model.launch']),
-                     ('models', ['base_frame.stl'])):
-        for name in names:
-            shutil.copy2(os.path.join(REFERENCE, d, name), os.path.join(pkg, d, name))
+    pkg, out = S.create_package(
+        ws, PKG, ['rospy', 'std_msgs', 'roscpp'], ['scripts', 'launch', 'urdf', 'models'], REFERENCE,
+        {'urdf': ['my_first_model.urdf', 'diff_robot_model.urdf.xacro', 'materials.xacro',
+                  'wheel.xacro', 'inertial.xacro', 'rviz_conf.rviz'],
+         'launch': ['robot.launch', 'first_model.launch'],
+         'models': ['base_frame.stl']})
     build = S.catkin_build(ws)
     return dict(ws=ws, pkg=pkg, env=S.overlay_env(ws), create_out=out, build=build)
 

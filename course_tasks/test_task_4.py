@@ -9,9 +9,7 @@ text's own `move.py` listing (self-study 2), all headless on a private roscore.
 """
 import importlib.util
 import os
-import re
 import shutil
-import textwrap
 import time
 
 import pytest
@@ -34,33 +32,16 @@ FILES = {'urdf': ['diff_robot_model.urdf.xacro', 'materials.xacro', 'wheel.xacro
          'models': ['base_frame.stl']}
 
 
-def readme_listing(start):
-    """The fenced code block of the README whose text begins with `start`, dedented."""
-    with open(README) as f:
-        text = f.read()
-    for m in re.finditer(r'```\w*\n(.*?)```', text, re.S):
-        block = textwrap.dedent(m.group(1))
-        if block.startswith(start):
-            return block
-    raise AssertionError('no listing starting with %r in %s' % (start, README))
-
-
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     """Section 4.1, steps 1-6: the package from the starter layout, the files, catkin build."""
     ws = S.make_workspace(tmp_path_factory.mktemp('task4'))
-    src = os.path.join(ws, 'src')
-    out = S.sh(['catkin_create_pkg', PKG, 'rospy', 'std_msgs'], S.shell_env(), cwd=src)
-    pkg = os.path.join(src, PKG)
-    S.sh(['mkdir', 'launch', 'urdf', 'worlds', 'config', 'scripts', 'models'], S.shell_env(), cwd=pkg)
+    pkg, out = S.create_package(ws, PKG, ['rospy', 'std_msgs'],
+                                ['launch', 'urdf', 'worlds', 'config', 'scripts', 'models'],
+                                REFERENCE, FILES)
     shutil.copy2(os.path.join(STARTER, 'urdf', 'inertial.xacro'), os.path.join(pkg, 'urdf'))
-    for d, names in FILES.items():
-        for name in names:
-            shutil.copy2(os.path.join(REFERENCE, d, name), os.path.join(pkg, d, name))
-    move = os.path.join(pkg, 'scripts', 'move.py')
-    with open(move, 'w') as f:
-        f.write(readme_listing('#!/usr/bin/env python3\n"""Drive forward'))
-    os.chmod(move, 0o755)
+    S.write_script(os.path.join(pkg, 'scripts', 'move.py'),
+                   S.readme_listing(README, '#!/usr/bin/env python3\n"""Drive forward'))
     build = S.catkin_build(ws)
     return dict(ws=ws, pkg=pkg, env=S.overlay_env(ws), create_out=out, build=build)
 

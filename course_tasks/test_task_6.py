@@ -9,9 +9,6 @@ works, and the student's script publishes Canny edges of the camera image.
 """
 import importlib.util
 import os
-import re
-import shutil
-import textwrap
 
 import pytest
 
@@ -32,30 +29,13 @@ FILES = {'urdf': ['diff_drive_robot.urdf.xacro', 'diff_drive.gazebo'],
          'config': ['sensors.rviz']}
 
 
-def readme_listing(start):
-    with open(README) as f:
-        text = f.read()
-    for m in re.finditer(r'```\w*\n(.*?)```', text, re.S):
-        block = textwrap.dedent(m.group(1))
-        if block.startswith(start):
-            return block
-    raise AssertionError('no listing starting with %r in %s' % (start, README))
-
-
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     ws = S.make_workspace(tmp_path_factory.mktemp('task6'))
-    src = os.path.join(ws, 'src')
-    out = S.sh(['catkin_create_pkg', PKG, 'rospy', 'std_msgs'], S.shell_env(), cwd=src)
-    pkg = os.path.join(src, PKG)
-    S.sh(['mkdir', 'launch', 'urdf', 'config', 'scripts'], S.shell_env(), cwd=pkg)
-    for d, names in FILES.items():
-        for name in names:
-            shutil.copy2(os.path.join(REFERENCE, d, name), os.path.join(pkg, d, name))
-    script = os.path.join(pkg, 'scripts', 'sensor_data_proc.py')
-    with open(script, 'w') as f:
-        f.write(readme_listing('#!/usr/bin/env python3\nimport os'))
-    os.chmod(script, 0o755)
+    pkg, out = S.create_package(ws, PKG, ['rospy', 'std_msgs'], ['launch', 'urdf', 'config', 'scripts'],
+                                REFERENCE, FILES)
+    S.write_script(os.path.join(pkg, 'scripts', 'sensor_data_proc.py'),
+                   S.readme_listing(README, '#!/usr/bin/env python3\nimport os'))
     build = S.catkin_build(ws)
     return dict(ws=ws, pkg=pkg, env=S.overlay_env(ws), create_out=out, build=build)
 
