@@ -11,11 +11,8 @@ PKG = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 @pytest.fixture(scope='module')
 def model():
-    urdf = mc.expand_xacro(os.path.join(PKG, 'urdf', 'diff_drive_robot.urdf.xacro'))
-    rc, out = mc.check_urdf(urdf)
-    assert rc == 0, out
-    assert mc.problems(urdf, root_frames=(), resolve=mc.rospack_resolver()) == []
-    return mc.parse(urdf)
+    return mc.checked_model(os.path.join(PKG, 'urdf', 'diff_drive_robot.urdf.xacro'),
+                            root_frames=())
 
 
 def sensor(model, link):

@@ -13,11 +13,8 @@ PKG = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 @pytest.fixture(scope='module')
 def model():
-    urdf = mc.expand_xacro(os.path.join(PKG, 'urdf', 'chassi_bot.urdf.xacro'))
-    rc, out = mc.check_urdf(urdf)
-    assert rc == 0 and 'root Link: base_footprint' in out, out
-    assert mc.problems(urdf, resolve=mc.rospack_resolver()) == []
-    return mc.parse(urdf)
+    return mc.checked_model(os.path.join(PKG, 'urdf', 'chassi_bot.urdf.xacro'),
+                            root='base_footprint')
 
 
 def test_skid_steer(model):

@@ -240,3 +240,17 @@ def expand_xacro(path, env=None, args=(), timeout=60):
     if r.returncode != 0:
         raise ModelError('xacro %s failed (%d): %s' % (path, r.returncode, (r.stderr or r.stdout).strip()))
     return r.stdout
+
+
+def checked_model(path, root=None, root_frames=('base_footprint',)):
+    """Expand a robot xacro, require `check_urdf` to pass (and name `root` as the root link
+    when given) and the simulator checks (`problems`) to find nothing; return the parsed
+    model. AssertionError with check_urdf's output / the problem list otherwise."""
+    urdf = expand_xacro(path)
+    rc, out = check_urdf(urdf)
+    assert rc == 0, out
+    if root is not None:
+        assert 'root Link: %s' % root in out, out
+    found = problems(urdf, root_frames=root_frames, resolve=rospack_resolver())
+    assert found == [], found
+    return parse(urdf)
