@@ -183,3 +183,25 @@ def test_mesh_collision_becomes_its_bounding_box_with_a_warning():
     corners = np.array([[x, y, z] for x in (-.5, .5) for y in (-1, 1) for z in (-1.5, 1.5)])
     lowest = shape.world_pose().apply(corners)[:, 2].min()
     assert lowest == pytest.approx(0.0, abs=0.01)   # the box lies on the ground, not in it
+
+
+def test_link_welded_to_the_world_is_static_even_inside_the_ground():
+    """A base fixed to 'world' (URDF world link) whose box reaches into the ground plane: no
+    body, no contact fight; the arm on it still swings on its hinge."""
+    base = Link('base', inertial=Inertial(5.0, ixx=.1, iyy=.1, izz=.1),
+                collisions=[Collision('c', Geometry('box', size=(0.2, 0.2, 0.2)))])
+    arm = pendulum().links[0]
+    hinge = Joint('hinge', 'continuous', 'base', 'arm', anchor=np.array([0.0, 0, 2]),
+                  axis=np.array([0.0, 1, 0]))
+    weld = Joint('fix', 'fixed', 'world', 'base')
+    pw = PhysicsWorld(Physics())
+    pw.add_model(ground())
+    m = pw.add_model(Model('robot', links=[base, arm], joints=[weld, hinge]))
+    assert m.links['base'].body is None and 'fix' not in m.joints
+    angles = []
+    for _ in range(2000):
+        pw.step()
+        angles.append(m.joints['hinge'].position())
+    assert m.links['base'].pose().p == pytest.approx([0, 0, 0])
+    # an undamped swing from horizontal: down through pi/2 to the other horizontal and back
+    assert max(angles) == pytest.approx(math.pi, abs=0.05) and min(angles) > -0.05

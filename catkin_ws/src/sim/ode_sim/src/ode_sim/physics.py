@@ -321,6 +321,21 @@ class SimModel:
             b.enable()
 
 
+def _welded_to_world(desc):
+    """Links held by the world through fixed joints only (a URDF 'world' link, an SDF joint to
+    'world'): they get no body, so they neither move nor fight contacts with the static world."""
+    welded = {'world'}
+    grew = True
+    while grew:
+        grew = False
+        for j in desc.joints:
+            if j.type == 'fixed' and j.parent in welded and j.child not in welded:
+                welded.add(j.child)
+                grew = True
+    welded.discard('world')
+    return welded
+
+
 def _forward_kinematics(desc, q):
     """Rigid motion of each link relative to the zero configuration, in the model frame:
     {link: Pose} such that link pose (model frame) = motion * link.pose. Roots (links no joint
@@ -406,9 +421,10 @@ class PhysicsWorld:
             _keep_alive(space)
         m.space = space
         world_of = desc.pose
+        welded = _welded_to_world(desc)
         for ld in desc.links:
             link_world = world_of * ld.pose
-            if static:
+            if static or ld.name in welded:
                 link = SimLink(m, ld, None, Pose(), static_pose=link_world)
             else:
                 link = self._make_body(m, ld, link_world)
@@ -501,7 +517,9 @@ class PhysicsWorld:
                              % (src, jd.name, jd.parent, jd.child))
         if m.static:
             return None
-        pb = parent.body if parent is not None else ENV
+        if jd.type == 'fixed' and child.body is None:
+            return None                 # welded to the world: the link itself is static
+        pb = parent.body if parent is not None and parent.body is not None else ENV
         cb = child.body
         if cb is None:
             raise ModelError("%s: joint '%s': child link '%s' has no body" % (src, jd.name, jd.child))
@@ -603,8 +621,8 @@ class PhysicsWorld:
         if s1 is None or s2 is None:
             return
         b1, b2 = s1[7], s2[7]
-        if b1 is not None and b1 is b2:
-            return
+        if b1 is b2:
+            return                      # one body, or two bodiless (static, welded) geoms
         if b1 is not None and b2 is not None and ode.areConnected(b1, b2):
             return
         contacts = ode.collide(g1, g2)
