@@ -8,6 +8,8 @@ pause_physics, unpause_physics, reset_simulation, reset_world.
 Topics: /gazebo/model_states, /gazebo/link_states (every step while subscribed),
 /gazebo/set_model_state, /gazebo/set_link_state (subscribed), /gazebo/scene_markers.
 """
+import time
+
 import numpy as np
 import rospy
 from gazebo_msgs import msg as gm
@@ -16,7 +18,7 @@ from geometry_msgs.msg import Pose as PoseMsg, Twist, Vector3
 from std_srvs.srv import Empty, EmptyResponse
 from visualization_msgs.msg import MarkerArray
 
-from .markers import pose_msg, scene_markers
+from .markers import SceneMarkers, pose_msg
 from .model import ModelError
 from .node import model_pose_from_request
 from .transforms import Pose
@@ -84,8 +86,9 @@ class GazeboApi:
         rospy.Subscriber(n + '/set_link_state', gm.LinkState, self._set_link_state_topic)
         self._wrenches = []             # (link, force, torque, point, end_time)
         self._efforts = []              # (joint, effort, end_time)
+        self._scene = SceneMarkers(scene_frame)
         self._marker_version = -1
-        self._next_marker = 0.0
+        self._next_marker = 0.0         # wall time of the next refresh
         node.step_hooks.append(self.after_step)
         self.publish_markers()
 
@@ -140,7 +143,8 @@ class GazeboApi:
             self.model_states.publish(self._model_states())
         if self.link_states.get_num_connections() > 0:
             self.link_states.publish(self._link_states())
-        if self.physics.version != self._marker_version or t >= self._next_marker:
+        if self.physics.version != self._marker_version or (
+                time.monotonic() >= self._next_marker and self.markers.get_num_connections()):
             self.publish_markers()
 
     def _model_states(self):
@@ -161,14 +165,15 @@ class GazeboApi:
         return msg
 
     def publish_markers(self):
-        """Scene markers: every model that was not spawned from URDF (robots are shown by
-        RViz's RobotModel); refreshed on changes and twice a second of sim time."""
+        """Scene markers of every model not spawned from URDF (robots are shown by RViz's
+        RobotModel): at once when models come or go, else twice a second of wall time while
+        someone listens (furniture may be pushed around)."""
         self._marker_version = self.physics.version
-        self._next_marker = self.physics.time + 0.5
+        self._next_marker = time.monotonic() + 0.5
         robots = {n for n, m in self.physics.models.items() if m.desc.urdf}
-        arr = scene_markers(self.physics.visual_shapes(), self.scene_frame,
-                            rospy.Time.from_sec(self.physics.time),
-                            include=lambda s: s.model not in robots)
+        arr = self._scene.build(self.physics.visual_shapes(),
+                                rospy.Time.from_sec(self.physics.time),
+                                include=lambda s: s.model not in robots)
         self.markers.publish(arr)
 
     # ----------------------------------------------------------------- spawning
