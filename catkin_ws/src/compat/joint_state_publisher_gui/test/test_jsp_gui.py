@@ -29,9 +29,7 @@ def test_gui_publishes_joint_states(roscore, xvfb, tmp_path):
 def test_patch_rounds_floats():
     from python_qt_binding.QtWidgets import QApplication, QSlider
     from jsp_gui_compat import patch_qt
-    import os
-    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-    app = QApplication.instance() or QApplication([])
+    app = QApplication.instance() or QApplication(['test', '-platform', 'offscreen'])
     patch_qt()
     patch_qt()   # idempotent
     s = QSlider()

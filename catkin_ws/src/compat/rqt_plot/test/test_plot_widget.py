@@ -1,18 +1,15 @@
 """PlotWidget without a master: curves fed through ROSData buffers, offscreen Qt."""
 import math
-import os
 
 import pytest
+from PyQt5 import QtWidgets
 
-os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-from PyQt5 import QtWidgets  # noqa: E402
-
-from rqt_plot.plot_widget import PlotWidget  # noqa: E402
+from rqt_plot.plot_widget import PlotWidget
 
 
 @pytest.fixture(scope='module')
 def app():
-    return QtWidgets.QApplication.instance() or QtWidgets.QApplication(['test'])
+    return QtWidgets.QApplication.instance() or QtWidgets.QApplication(['test', '-platform', 'offscreen'])
 
 
 def feed(widget, spec, ts, fn):

@@ -1,14 +1,11 @@
 """Unit tests of the ROS-free turtle model, the QImage drawing layer and the helper logic."""
 import math
-import os
 
 import pytest
 
-os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-
-from turtlesim import square, teleop                       # noqa: E402
-from turtlesim.canvas import Canvas                        # noqa: E402
-from turtlesim.world import (CENTRE, DEFAULT_BACKGROUND, DEFAULT_PEN, TICK, WORLD_SIZE,  # noqa: E402
+from turtlesim import square, teleop
+from turtlesim.canvas import Canvas
+from turtlesim.world import (CENTRE, DEFAULT_BACKGROUND, DEFAULT_PEN, TICK, WORLD_SIZE,
                              TurtleError, World, wrap_angle)
 
 

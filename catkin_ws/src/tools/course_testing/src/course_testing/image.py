@@ -1,13 +1,10 @@
 """Screenshots as arrays, read through Qt (Debian's PyQt5; no extra imaging library)."""
-import os
-
 import numpy as np
 
 
 def load_rgb(path):
     """PNG (or any format Qt reads) -> H x W x 3 uint8 array in RGB order."""
-    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
-    from PyQt5.QtGui import QImage
+    from PyQt5.QtGui import QImage       # QImage needs no QApplication and no display
     img = QImage(str(path)).convertToFormat(QImage.Format_RGB32)
     if img.isNull():
         raise ValueError('cannot read image %s' % path)
