@@ -45,3 +45,13 @@ def screen():
         yield x
     finally:
         x.stop()
+
+
+@pytest.fixture
+def rviz_env(roscore, screen):
+    """Environment for GUI programs (RViz, Qt windows) on the private `screen` talking to the
+    private `roscore`: the test runner's QT_QPA_PLATFORM=offscreen (scripts/test.sh, for
+    in-process Qt) is removed, or RViz cannot create its render window."""
+    env = dict(roscore.env, DISPLAY=screen.display)
+    env.pop('QT_QPA_PLATFORM', None)
+    return env

@@ -7,10 +7,8 @@ from my_robot_model.gui_check import rviz_launch_shows
 COLOURS = {'blue base': (0.05, 0.35, 0.9, 1.0), 'black wheels': (0.0, 0.0, 0.0, 1.0)}
 
 
-def test_display_launch_shows_the_model(roscore, screen, tmp_path):
-    env = dict(roscore.env, DISPLAY=screen.display)
-    env.pop('QT_QPA_PLATFORM', None)
-    rviz_launch_shows(env, screen.display, tmp_path, ['jacksonbot_description', 'display.launch'], COLOURS, 'jacksonbot_description_display.png')
+def test_display_launch_shows_the_model(rviz_env, screen, tmp_path):
+    rviz_launch_shows(rviz_env, screen.display, tmp_path, ['jacksonbot_description', 'display.launch'], COLOURS, 'jacksonbot_description_display.png')
 
 
 def test_colours_are_the_models_materials():

@@ -9,29 +9,23 @@ BLUE = (0.0, 0.0, 0.8, 1.0)
 BLACK = (0.0, 0.0, 0.0, 1.0)
 
 
-def gui_env(roscore, screen):
-    env = dict(roscore.env, DISPLAY=screen.display)
-    env.pop('QT_QPA_PLATFORM', None)
-    return env
-
-
-def test_robot_launch_shows_orange_body_and_black_wheels(roscore, screen, tmp_path):
-    box, counts = rviz_launch_shows(gui_env(roscore, screen), screen.display, tmp_path,
+def test_robot_launch_shows_orange_body_and_black_wheels(rviz_env, screen, tmp_path):
+    box, counts = rviz_launch_shows(rviz_env, screen.display, tmp_path,
                                     ['my_robot_model', 'robot.launch'],
                                     {'orange body': ORANGE, 'black wheels': BLACK}, 'my_robot_model_robot.png')
     assert counts['orange body'] > counts['black wheels']
     assert box[2] - box[0] > 800   # the 3D view is the main part of the window
 
 
-def test_robot_launch_with_gui_sliders(roscore, screen, tmp_path):
+def test_robot_launch_with_gui_sliders(rviz_env, screen, tmp_path):
     """gui:=true starts joint_state_publisher_gui instead; the model is still drawn."""
-    rviz_launch_shows(gui_env(roscore, screen), screen.display, tmp_path,
+    rviz_launch_shows(rviz_env, screen.display, tmp_path,
                       ['my_robot_model', 'robot.launch'], {'orange body': ORANGE, 'black wheels': BLACK},
                       'my_robot_model_robot_gui.png', launch_args=['gui:=true'])
 
 
-def test_first_model_launch_shows_blue_body_and_black_wheels(roscore, screen, tmp_path):
-    _, counts = rviz_launch_shows(gui_env(roscore, screen), screen.display, tmp_path,
+def test_first_model_launch_shows_blue_body_and_black_wheels(rviz_env, screen, tmp_path):
+    _, counts = rviz_launch_shows(rviz_env, screen.display, tmp_path,
                                   ['my_robot_model', 'first_model.launch'],
                                   {'blue body': BLUE, 'black wheels': BLACK}, 'my_robot_model_first_model.png')
     assert counts['blue body'] > counts['black wheels']

@@ -26,8 +26,8 @@ def counts(rgb):
             'scene': int(orange[VIEW].sum()) - robot}
 
 
-def test_rviz_shows_robot_scene_markers_and_scan(roscore, screen, tmp_path):
-    env = dict(roscore.env, DISPLAY=screen.display)
+def test_rviz_shows_robot_scene_markers_and_scan(rviz_env, screen, tmp_path):
+    env = rviz_env
     launch = Proc(['roslaunch', 'my_robot_simulation_sensors', 'robot_sim_camera.launch',
                    'gui:=false', 'proc:=false'], env=env, log=str(tmp_path / 'launch.log'))
     shot = str(tmp_path / 'pw6_rviz_scene.png')

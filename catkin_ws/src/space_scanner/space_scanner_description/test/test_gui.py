@@ -7,10 +7,8 @@ from my_robot_model.gui_check import rviz_launch_shows
 COLOURS = {'green decks': (0.1, 0.75, 0.2, 1.0), 'red front wheels': (0.85, 0.05, 0.05, 1.0), 'blue rear wheels': (0.05, 0.2, 0.85, 1.0)}
 
 
-def test_display_launch_shows_the_model(roscore, screen, tmp_path):
-    env = dict(roscore.env, DISPLAY=screen.display)
-    env.pop('QT_QPA_PLATFORM', None)
-    rviz_launch_shows(env, screen.display, tmp_path, ['space_scanner_description', 'display.launch'], COLOURS, 'space_scanner_description_display.png')
+def test_display_launch_shows_the_model(rviz_env, screen, tmp_path):
+    rviz_launch_shows(rviz_env, screen.display, tmp_path, ['space_scanner_description', 'display.launch'], COLOURS, 'space_scanner_description_display.png')
 
 
 def test_colours_are_the_models_materials():
