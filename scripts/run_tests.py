@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Run every pytest test and every rostest of the repository and print one closing line.
+"""Run every pytest test, gtest executable and rostest of the repository; print one closing line.
 
 The closing line is `N passed, N failed, N skipped`, aggregated from the JUnit XML files the
 runs write (pytest's --junitxml and rostest's results). Exit status is non-zero when anything
@@ -52,6 +52,16 @@ def count_junit(path):
     return passed, failed, skipped, names
 
 
+def pytest_durations(path):
+    """(seconds, name) of every test case in pytest's JUnit XML."""
+    try:
+        root = ET.parse(path).getroot()
+    except (ET.ParseError, OSError):
+        return []
+    return [(float(c.get('time') or 0), '%s::%s' % (c.get('classname', ''), c.get('name', '')))
+            for c in root.iter('testcase')]
+
+
 def package_of(path):
     d = os.path.dirname(path)
     while d != REPO and d != '/':
@@ -67,12 +77,20 @@ def rostest_files():
     return sorted(f for f in files if package_of(f))
 
 
+def gtest_executables():
+    """The C++ unit tests: catkin_add_gtest targets named gtest_*, built by scripts/setup.sh
+    (`catkin_make all tests`) into catkin_ws/devel/lib/<package>/."""
+    found = glob.glob(os.path.join(REPO, 'catkin_ws', 'devel', 'lib', '*', 'gtest_*'))
+    return sorted(f for f in found if os.path.isfile(f) and os.access(f, os.X_OK))
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--full', action='store_true', help='also run tests marked `full`')
     ap.add_argument('-k', dest='keyword', help='pytest -k expression; rostests: substring of file name')
     ap.add_argument('--no-rostest', action='store_true')
     ap.add_argument('--no-pytest', action='store_true')
+    ap.add_argument('--no-gtest', action='store_true')
     args = ap.parse_args()
 
     course_testing.become_subreaper()   # orphans of a test come back to us and are killed
@@ -85,6 +103,7 @@ def main():
 
     problems = []   # runs that produced no usable results
     xmls = []
+    durations = []  # (seconds, name) of every test case and rostest file: the slowest are listed
     t0 = time.monotonic()
 
     if not args.no_pytest:
@@ -102,6 +121,29 @@ def main():
             xmls.append(junit)
         elif rc not in (0, 5):  # 5 = nothing collected
             problems.append('pytest: exited %s without a result file' % rc)
+
+    if not args.no_gtest:
+        for exe in gtest_executables():
+            name = os.path.basename(exe)
+            if args.keyword and args.keyword not in name:
+                continue
+            xml = os.path.join(RESULTS, 'gtest', name + '.xml')
+            log = os.path.join(RESULTS, 'gtest', name + '.log')
+            os.makedirs(os.path.dirname(xml), exist_ok=True)
+            print('=== gtest %s' % os.path.relpath(exe, REPO), flush=True)
+            t = time.monotonic()
+            rc, timed_out = run([exe, '--gtest_output=xml:' + xml], 600, env=env, log=log)
+            durations.append((time.monotonic() - t, 'gtest ' + name))
+            if timed_out:
+                problems.append('%s: hit the 600 s time limit' % name)
+            if os.path.exists(xml):
+                xmls.append(xml)
+            else:
+                problems.append('%s: exited %s without a result file (see %s)' % (
+                    name, rc, os.path.relpath(log, REPO)))
+            if rc != 0:
+                with open(log) as fh:
+                    print(''.join(fh.readlines()[-30:]), flush=True)
 
     if not args.no_rostest:
         for f in rostest_files():
@@ -124,6 +166,7 @@ def main():
                 a, b, c, _n = count_junit(x)
                 p, fl, s = p + a, fl + b, s + c
             status = 'ok' if rc == 0 and not fl else 'FAILED'
+            durations.append((time.monotonic() - t, 'rostest ' + rel))
             print('    %s: %d passed, %d failed (%.0f s, log %s)' % (
                 status, p, fl, time.monotonic() - t, os.path.relpath(log, REPO)), flush=True)
             if timed_out:
@@ -142,6 +185,11 @@ def main():
         passed, failed, skipped = passed + a, failed + b, skipped + c
         failures += names
     failed += len(problems)
+    if os.path.exists(os.path.join(RESULTS, 'pytest.xml')):
+        durations += pytest_durations(os.path.join(RESULTS, 'pytest.xml'))
+    print('\n=== ten slowest')
+    for sec, name in sorted(durations, reverse=True)[:10]:
+        print('%7.1f s  %s' % (sec, name))
     print('\n=== summary (%.0f s)' % (time.monotonic() - t0))
     for name in failures:
         print('FAILED', name)

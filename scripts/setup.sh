@@ -52,9 +52,8 @@ fi
 
 # 3. catkin workspace ------------------------------------------------------------------
 log "building catkin_ws with catkin_make"
-cd "$REPO/catkin_ws"
-exec 9>"$REPO/.deps/build.lock"; flock 9     # one catkin_make at a time in this workspace
-catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release >"$REPO/.deps/catkin_make.log" 2>&1 || {
+mkdir -p "$REPO/.deps"
+bash "$REPO/scripts/build.sh" all tests >"$REPO/.deps/catkin_make.log" 2>&1 || {
     tail -n 40 "$REPO/.deps/catkin_make.log" >&2
     die "catkin_make failed (full log: .deps/catkin_make.log)"
 }
