@@ -1,6 +1,7 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full demo bench clean
+.PHONY: setup build test test-full test-stress demo bench clean
+REPEAT ?= 1
 
 setup:
 	bash scripts/setup.sh
@@ -13,6 +14,10 @@ test: setup
 
 test-full: setup
 	bash scripts/test.sh --full
+
+# the suite with every core busy (stress-ng), REPEAT rounds: make test-stress REPEAT=3
+test-stress: setup
+	bash scripts/stress.sh --repeat $(REPEAT)
 
 demo: setup
 	bash scripts/demo.sh

@@ -7,6 +7,7 @@ failed, when a run produced no result file, or when a run hit its time limit.
 """
 import argparse
 import glob
+import json
 import os
 import sys
 import time
@@ -195,6 +196,10 @@ def main():
         print('FAILED', name)
     for pr in problems:
         print('FAILED', pr)
+    with open(os.path.join(RESULTS, 'summary.json'), 'w') as fh:   # read by scripts/stress.py
+        json.dump({'passed': passed, 'failed': failed, 'skipped': skipped,
+                   'failures': failures + problems, 'seconds': time.monotonic() - t0,
+                   'durations': sorted(durations, reverse=True)}, fh, indent=1)
     line = '%d passed, %d failed' % (passed, failed)
     if skipped:
         line += ', %d skipped' % skipped

@@ -16,7 +16,8 @@ STARTUP_LIMIT = 20.0   # s from start until every node is up and the first resul
 OBSERVE = 8.0          # s of observation after the first result
 MIN_RESULTS = 3        # result messages needed in the observation ("repeatedly")
 MAX_GAP = 5.0          # s, largest allowed pause between two results
-WINDOW = 5.0           # s, operand values this old may still explain a result
+WINDOW = 10.0          # s before a result: operands the computing node may still have held
+LAG = 3.0              # s after a result: operands the checker may see only after the result
 ABS_TOL = 1e-3         # |result - expected| <= ABS_TOL + REL_TOL * |expected|
 REL_TOL = 1e-4
 
@@ -83,13 +84,25 @@ def node_scripts(pkg_dir):
     return found
 
 
-def candidates(series, t, window=WINDOW):
-    """Values of a (t, v) series that may explain something seen at time t."""
+def candidates(series, t, window=WINDOW, lag=LAG):
+    """Values of an operand series (checker receive time, value) that may have produced a result
+    the checker received at t, by causality rather than by the checker's clock.
+
+    The computing node used the latest operands *it* had received when it published. The checker
+    receives operands and the result on separate connections, each delayed by its own amount
+    (seconds on a loaded machine), so that operand may reach the checker after the result
+    (`lag`), and the computing node may still hold an operand the checker replaced earlier
+    (`window`). The latest value before t is always a candidate, however old: a slow sender is
+    not a wrong answer. Empty when the checker had no value before t: then it may have missed
+    the operand that was used (it subscribes only once it sees the topic), and the result is
+    not judged at all."""
     before = [v for (ts, v) in series if ts <= t]
-    recent = [v for (ts, v) in series if t - window <= ts <= t]
-    if before and before[-1] not in recent:
-        recent.append(before[-1])
-    return recent
+    if not before:
+        return []
+    near = [v for (ts, v) in series if t - window <= ts <= t + lag]
+    if before[-1] not in near:
+        near.append(before[-1])
+    return near
 
 
 def match_results(results, first, second, op, int_result=False):
@@ -108,8 +121,10 @@ def match_results(results, first, second, op, int_result=False):
         verified += 1
         if not ok:
             wrong += 1
-            if example is None:
-                example = (r, a_s[-1], b_s[-1], apply_op(op, a_s[-1], b_s[-1]))
+            if example is None:   # shown with the operands the checker had last before the result
+                a = [v for ts, v in first if ts <= t][-1]
+                b = [v for ts, v in second if ts <= t][-1]
+                example = (r, a, b, apply_op(op, a, b))
     return verified, wrong, example
 
 
@@ -192,8 +207,8 @@ def evaluate(obs):
         formula = '%s %s %s' % (s1, op, s2)
         if wrong:
             r, a, b, e = ex
-            c3.set(False, reason('результат %s, а %s = %s %s %s = %s (неверно %d из %d)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified),
-                                 'result %s but %s = %s %s %s = %s (%d of %d wrong)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified)))
+            c3.set(False, reason('результат %s, а %s = %s %s %s = %s (неверно %d из %d; проверены все операнды за %.0f с до и %.0f с после каждого результата)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified, WINDOW, LAG),
+                                 'result %s but %s = %s %s %s = %s (%d of %d wrong; every operand from %.0f s before to %.0f s after each result was tried)' % (fmt(r), formula, fmt(a), op, fmt(b), fmt(e), wrong, verified, WINDOW, LAG)))
         elif verified < MIN_RESULTS:
             c3.set(False, reason('удалось сверить лишь %d результатов (нужно %d)' % (verified, MIN_RESULTS),
                                  'only %d results could be checked against their operands (%d needed)' % (verified, MIN_RESULTS)))

@@ -51,6 +51,21 @@ def test_match_results_uses_operand_order_and_window():
     assert lab1.match_results([(2.0, 3.0)], [(1.0, 7.0)], [(1.0, 2.0)], '/', int_result=True)[1] == 0
 
 
+def test_match_results_by_causality_not_by_the_checkers_clock():
+    """The race of a loaded machine: the computing node got the new operand and published its
+    result, but the checker received the result before that operand (separate connections)."""
+    first = [(0.0, 2.94), (10.0, 8.94)]      # 8.94 reaches the checker 0.4 s after the result
+    second = [(0.0, 7.1)]
+    assert lab1.match_results([(9.6, 1.84)], first, second, '-') == (1, 0, None)
+    # the computing node still held an operand the checker replaced 8 s before the result
+    assert lab1.match_results([(9.0, 2.94 - 7.1)], [(0.0, 2.94), (1.0, 5.0)], second, '-') == (1, 0, None)
+    # a slow sender: its only value is a minute old, still the operand in use
+    assert lab1.match_results([(70.0, 2.94 - 7.1)], [(0.0, 2.94)], second, '-') == (1, 0, None)
+    # a wrong operation stays wrong, reported with the operands the checker had last
+    v, wrong, ex = lab1.match_results([(9.6, 2.94 + 7.1)], first, second, '-')
+    assert (v, wrong) == (1, 1) and ex[1:] == (2.94, 7.1, 2.94 - 7.1)
+
+
 def lab1_obs(result_values, comp_pubs=('/result_1234',)):
     # ISU 1234: digit 4 -> node1 computes node2 * node3
     t = [0.5 * i for i in range(12)]

@@ -3,7 +3,6 @@ parameters and the gzclient node (roslaunch's own loader and CLI; no simulator i
 import os
 import subprocess
 
-import pytest
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 LAUNCH = os.path.join(os.path.dirname(HERE), 'launch', 'empty_world.launch')
@@ -79,8 +78,8 @@ def test_roslaunch_nodes_and_args():
     assert out.stdout.split() == ['/gazebo', '/gazebo_gui']
     out = roslaunch_cli('--args', '/gazebo', 'gazebo_ros', 'empty_world.launch', 'paused:=true',
                         'lockstep:=true', 'world_name:=worlds/office.world')
-    if 'Cannot locate node' in out.stderr or 'sim_node' not in out.stdout + out.stderr:
-        pytest.skip('ode_sim sim_node is not built: %s' % out.stderr.strip()[-200:])
+    assert 'Cannot locate node' not in out.stderr and 'sim_node' in out.stdout + out.stderr, \
+        'ode_sim sim_node is not built (run scripts/setup.sh): %s' % out.stderr.strip()[-200:]
     assert out.returncode == 0, out.stderr
     argv = out.stdout.split()
     assert argv[0].endswith('/sim_node')

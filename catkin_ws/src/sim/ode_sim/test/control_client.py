@@ -35,6 +35,9 @@ def main():
     rospy.Subscriber('/ode_sim/joint_states', JointState, on_state, queue_size=10)
     while not rospy.is_shutdown() and (not seen['stamps'] or seen['stamps'][-1] < seconds):
         rospy.sleep(0.05)
+    # done: leave the lockstep (the simulator stops waiting for a controller that is gone)
+    # before reporting, so the simulator never waits for answers that will not come
+    pub.unregister()
     seen['joints'] = joints
     seen['period'] = period
     print(json.dumps(seen), flush=True)

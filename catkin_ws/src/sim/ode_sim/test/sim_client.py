@@ -80,10 +80,7 @@ def api():
     time.sleep(1.0)
     t1 = sim_time()
     out['running'] = t1 > t0
-    # clock speed: real-time factor over 2 s of wall time
-    a, wa = sim_time(), time.monotonic()
-    time.sleep(2.0)
-    out['rtf'] = (sim_time() - a) / (time.monotonic() - wa)
+    time.sleep(2.0)     # the arm settles (pacing itself: test_pacing_*, bench/sim_pacing)
     out['arm_settled'] = state('arm')
     out['relative'] = state('arm', 'cone')
     ms = rospy.wait_for_message('/gazebo/model_states', gm.ModelStates, timeout=10)
@@ -126,9 +123,9 @@ def api():
                       phys.ode_config.sor_pgs_iters, phys.pause]
     r = svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
         phys.time_step, 0.0, phys.gravity, phys.ode_config)
-    a, wa = sim_time(), time.monotonic()
+    a = sim_time()
     time.sleep(1.0)
-    out['rtf_fast'] = (sim_time() - a) / (time.monotonic() - wa)
+    out['fast_running'] = sim_time() > a
     svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
         phys.time_step, phys.max_update_rate, phys.gravity, phys.ode_config)
     # resets

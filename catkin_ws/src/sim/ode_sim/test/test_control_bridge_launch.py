@@ -48,6 +48,10 @@ def test_position_hold_and_wheel_velocity_in_lockstep(roscore, tmp_path):
     sim = Proc(['roslaunch', 'gazebo_ros', 'empty_world.launch', 'lockstep:=true', 'gui:=false',
                 'paused:=true'], env=env, log=str(tmp_path / 'sim.log'))
     try:
+        # the lockstep wait is wall time: give a loaded machine's client far more than 1 s, so
+        # that the assertion below proves lockstep rather than the machine's speed
+        subprocess.run(['rosparam', 'set', '/ode_sim/lockstep_timeout', '60.0'], env=env,
+                       check=True, timeout=60, capture_output=True)
         spawn = subprocess.run(['rosrun', 'gazebo_ros', 'spawn_model', '-urdf', '-file', str(urdf),
                                 '-model', 'arm'], env=env, capture_output=True, text=True,
                                timeout=120)

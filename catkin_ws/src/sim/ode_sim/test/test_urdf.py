@@ -211,8 +211,7 @@ def test_links_without_inertial_as_gazebo():
 
 def _xacro(relpath):
     exe = shutil.which('xacro')
-    if exe is None:
-        pytest.skip('xacro not on PATH (source scripts/env.sh)')
+    assert exe is not None, 'xacro is not on PATH: the workspace is not built or not sourced (scripts/env.sh)'
     out = subprocess.run([exe, os.path.join(SRC, relpath)], capture_output=True, text=True,
                          timeout=60)
     assert out.returncode == 0, out.stderr

@@ -43,6 +43,37 @@ class Spawner:
         return out
 
 
+class Pacer:
+    """Gazebo's pacing: with `real_time_update_rate` R > 0, step k after a (re)start is due at
+    wall0 + k / R, so sim time runs at max_step_size x R per wall second (1.0 for the defaults);
+    R = 0 never waits (as fast as possible). A simulator that falls more than `behind` seconds
+    late (a slow or loaded machine) restarts the count instead of racing to catch up.
+    The clock and sleep are injectable so the policy is tested without the wall clock."""
+
+    def __init__(self, clock=time.monotonic, sleep=time.sleep, behind=0.5, min_sleep=0.002):
+        self.clock, self.sleep = clock, sleep
+        self.behind, self.min_sleep = behind, min_sleep
+        self.rate, self.wall0, self.steps0 = 0.0, 0.0, 0
+        self.slept = 0.0        # wall seconds spent waiting since construction
+        self.resyncs = 0
+
+    def restart(self, rate, steps):
+        self.rate, self.wall0, self.steps0 = rate, self.clock(), steps
+
+    def after_step(self, steps):
+        """Wait until step `steps` is due; False when the count must restart (fell behind)."""
+        if self.rate <= 0:
+            return True
+        ahead = self.wall0 + (steps - self.steps0) / self.rate - self.clock()
+        if ahead > self.min_sleep:
+            self.sleep(ahead)
+            self.slept += ahead
+        elif ahead < -self.behind:
+            self.resyncs += 1
+            return False
+        return True
+
+
 class SimNode:
     def __init__(self, world, paused=False, lockstep=False, verbose=False):
         self.world = world
@@ -160,9 +191,7 @@ class SimNode:
 
     def spin(self):
         """Run until rospy shuts down: step, pace, publish."""
-        dt = self.physics.dt
-        wall0 = 0.0
-        sim0 = 0.0
+        pacer = Pacer()
         self.publish_clock(force=True)
         while not rospy.is_shutdown() and not self._stop.is_set():
             if self.paused:
@@ -170,18 +199,12 @@ class SimNode:
                 self._resync = True
                 continue
             if self._resync:
-                wall0 = time.monotonic()
-                sim0 = self.physics.steps
                 self._resync = False
                 self.rate = self.world.physics.real_time_update_rate
+                pacer.restart(self.rate, self.physics.steps)
             self.step_once()
-            if self.rate > 0:
-                target = wall0 + (self.physics.steps - sim0) / self.rate
-                ahead = target - time.monotonic()
-                if ahead > 0.002:
-                    time.sleep(ahead)
-                elif ahead < -0.5:
-                    self._resync = True     # fell far behind (slow machine): do not catch up
+            if not pacer.after_step(self.physics.steps):
+                self._resync = True     # fell far behind (slow machine): do not catch up
         for ps in self.plugins.values():
             for p in ps:
                 try:

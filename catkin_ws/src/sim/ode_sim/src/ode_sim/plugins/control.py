@@ -334,6 +334,8 @@ class GazeboRosControl(Plugin):
             self.waits += 1
             deadline = time.monotonic() + self.lockstep_timeout
             while self._cmd_stamp < want and not self._closing:
+                if not self._connected():   # the controller node left: nothing to wait for
+                    return
                 left = deadline - time.monotonic()
                 if left <= 0:
                     self._stalled = True
@@ -342,7 +344,7 @@ class GazeboRosControl(Plugin):
                                   "%.1f s; stepping on with the last command"
                                   % (stamp.to_sec(), self.command_topic, self.lockstep_timeout))
                     return
-                self._cond.wait(left)
+                self._cond.wait(min(left, 0.2))
             if self._cmd_stamp >= want:
                 self.synced += 1
 
