@@ -205,7 +205,7 @@ def test_rostopic_pub_moves_turtle(turtlesim):
     def stopped_after_moving():
         p = _pose(env)
         return p if p['linear_velocity'] == 0.0 and p['x'] != pytest.approx(CENTRE, abs=0.05) else None
-    pose = wait_for(stopped_after_moving, 15, 0.2, 'the turtle to move and stop')
+    pose = wait_for(stopped_after_moving, 60, 0.2, 'the turtle to move and stop')
     moved = math.hypot(pose['x'] - CENTRE, pose['y'] - CENTRE)
     assert 0.3 < moved < 2.5, pose          # ~1 s of an arc of radius 2/1.8 m
     assert pose['theta'] > 0.5, pose        # turned left
@@ -233,7 +233,7 @@ def test_teleop_key_drives_turtle(turtlesim, tmp_path):
         def pressed_up():
             os.write(master_fd, b'\x1b[A')
             return _pose(env)['x'] > x0 + 0.3
-        wait_for(pressed_up, 20, 0.2, 'the turtle to drive forward after the up arrow')
+        wait_for(pressed_up, 60, 0.2, 'the turtle to drive forward after the up arrow')
         os.write(master_fd, b'q')
     finally:
         if teleop:

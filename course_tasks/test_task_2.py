@@ -153,7 +153,7 @@ def test_super_node_with_rosrun(workspace, roscore, xvfb, tmp_path):
         S.wait_output(node, 'Node started...')
         S.wait_output(node, 'Super node sending new msg')
         p0 = S.wait_topic('/turtle1/pose', env, proc=sim)
-        wait_for(lambda: S.echo_once('/turtle1/pose', env)['x'] > 9.0, 20, 0.2,
+        wait_for(lambda: S.echo_once('/turtle1/pose', env)['x'] > 9.0, 60, 0.2,
                  'the turtle to reach x > 9 (2 m/s from the centre)')
         p1 = S.echo_once('/turtle1/pose', env)
         assert p1['linear_velocity'] in (1.0, 2.0)
@@ -212,7 +212,7 @@ def test_two_controllers_in_namespaces(workspace, roscore, xvfb, tmp_path):
             assert seen['matched'] >= seen['positions'] - 2 and seen['positions'] >= 100, (ns, seen)
             first = S.echo_once(ns + '/turtle1/pose', env)
             moved = wait_for(lambda: _moved(S.echo_once(ns + '/turtle1/pose', env), first, 0.5),
-                             20, 0.2, 'the %s turtle to move' % ns)
+                             60, 0.2, 'the %s turtle to move' % ns)
             assert moved['linear_velocity'] in (speed, speed / 2), (ns, moved)
         assert 'driving turtle /ns1/turtle1 at 2.00 m/s' in lp.output()
         assert 'driving turtle /ns2/turtle1 at 1.00 m/s' in lp.output()
@@ -242,7 +242,7 @@ def test_mimic_launch(workspace, roscore, xvfb, tmp_path):
                           'geometry_msgs/Twist', '{linear: {x: 1.5}, angular: {z: 0.9}}'],
                          env, tmp_path / 'pub.log')
         wait_for(lambda: _moved(S.echo_once('/turtlesim2/turtle1/pose', env), start, 1.5),
-                 20, 0.2, 'turtle 2 to follow turtle 1')
+                 60, 0.2, 'turtle 2 to follow turtle 1')
         drive.stop()
         drive = None
 
@@ -250,7 +250,7 @@ def test_mimic_launch(workspace, roscore, xvfb, tmp_path):
             a = S.echo_once('/turtlesim1/turtle1/pose', env)
             b = S.echo_once('/turtlesim2/turtle1/pose', env)
             return (a, b) if a['linear_velocity'] == 0.0 and b['linear_velocity'] == 0.0 else None
-        a, b = wait_for(both_stopped, 15, 0.2, 'both turtles to stop')
+        a, b = wait_for(both_stopped, 60, 0.2, 'both turtles to stop')
         assert math.hypot(a['x'] - b['x'], a['y'] - b['y']) < 0.5, (a, b)
         assert abs(math.remainder(a['theta'] - b['theta'], 2 * math.pi)) < 0.3, (a, b)
         assert math.hypot(b['x'] - start['x'], b['y'] - start['y']) > 1.5, (b, start)

@@ -63,7 +63,7 @@ def main():
 
     os.makedirs(OUT, exist_ok=True)
     course_testing.become_subreaper()
-    env = dict(os.environ)
+    env = dict(os.environ, PYTHONUNBUFFERED='1')    # the round's log fills as it runs
     rounds = []
     with course_testing.cpu_load(args.workers) as load:
         print('=== stress: %d CPU workers (stress-ng) on %d cores, %d round(s)' % (

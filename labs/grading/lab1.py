@@ -10,9 +10,10 @@ from grading.common import Criterion, reason, variant
 
 PACKAGE = 'my_robot_controller'
 GRADER_PKG = 'lab1_grader'
-DEFAULT_TIMEOUT = 150.0
+DEFAULT_TIMEOUT = 200.0
 NODES = ('node1', 'node2', 'node3')
-STARTUP_LIMIT = 20.0   # s from start until every node is up and the first result arrives
+STARTUP_LIMIT = 60.0   # s from start until every node is up and the first result arrives (generous: a
+                       # loaded machine starts three rospy nodes slowly; a working solution needs ~3 s)
 OBSERVE = 8.0          # s of observation after the first result
 MIN_RESULTS = 3        # result messages needed in the observation ("repeatedly")
 MAX_GAP = 5.0          # s, largest allowed pause between two results
@@ -228,8 +229,8 @@ def evaluate(obs):
             c4.set(False, reason('за %.0f с пришло %d сообщений (нужно ≥ %d)' % (OBSERVE, len(ts), MIN_RESULTS),
                                  '%d messages in %.0f s (>= %d needed)' % (len(ts), OBSERVE, MIN_RESULTS)))
         elif gap > MAX_GAP:
-            c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с)' % (gap, MAX_GAP),
-                                 'a %.1f s pause between results (%.0f s allowed)' % (gap, MAX_GAP)))
+            c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с; по времени приёма у проверяющего)' % (gap, MAX_GAP),
+                                 'a %.1f s pause between results (%.0f s allowed; by the grader\'s receive times)' % (gap, MAX_GAP)))
         else:
             rate = (len(ts) - 1) / (ts[-1] - ts[0]) if ts[-1] > ts[0] else 0.0
             c4.set(True, reason('%d сообщений, %.1f Гц, первое через %.1f с' % (len(ts), rate, first_after),

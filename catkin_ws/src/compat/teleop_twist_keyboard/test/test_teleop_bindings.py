@@ -89,7 +89,7 @@ def twist_tuple(t):
     return (t.linear.x, t.linear.y, t.linear.z, t.angular.x, t.angular.y, t.angular.z)
 
 
-def _wait(cond, timeout=2.0):
+def _wait(cond, timeout=30.0):
     deadline = time.monotonic() + timeout
     while not cond():
         assert time.monotonic() < deadline, 'timed out'

@@ -73,7 +73,7 @@ def test_teleop_keys_drive_turtle(roscore, tmp_path):
         assert start['x'] == pytest.approx(CENTRE, abs=1e-5)
 
         os.write(master, b'\x1b[A')                      # up arrow
-        wait_for(lambda: twists(echo_log), 10, 0.1, 'a Twist from the up arrow')
+        wait_for(lambda: twists(echo_log), 60, 0.1, 'a Twist from the up arrow')
         moved = wait_for(lambda: (lambda p: p if p['linear_velocity'] == 0.0
                                   and p['x'] > CENTRE + 1.5 else None)(pose(env)),
                          10, 0.1, 'the turtle to move ~2 m and stop')
@@ -81,7 +81,7 @@ def test_teleop_keys_drive_turtle(roscore, tmp_path):
         assert moved['y'] == pytest.approx(CENTRE, abs=1e-5)
 
         os.write(master, b'\x1b[D')                      # left arrow: turn
-        wait_for(lambda: len(twists(echo_log)) >= 2, 10, 0.1, 'a Twist from the left arrow')
+        wait_for(lambda: len(twists(echo_log)) >= 2, 60, 0.1, 'a Twist from the left arrow')
         turned = wait_for(lambda: (lambda p: p if p['angular_velocity'] == 0.0
                                    and p['theta'] > 1.0 else None)(pose(env)),
                           10, 0.1, 'the turtle to turn ~1.5 rad')

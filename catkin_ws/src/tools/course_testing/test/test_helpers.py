@@ -26,21 +26,21 @@ def test_xvfb_screenshot(tmp_path):
 
 def test_proc_stop_kills_group(tmp_path):
     p = Proc(['bash', '-c', 'sleep 300 & echo $! > %s; wait' % (tmp_path / 'child')])
-    wait_for(lambda: (tmp_path / 'child').exists() and (tmp_path / 'child').read_text().strip(), 5)
+    wait_for(lambda: (tmp_path / 'child').exists() and (tmp_path / 'child').read_text().strip(), 60)
     child = int((tmp_path / 'child').read_text())
     p.stop()
-    wait_for(lambda: _gone(child), 5, what='child gone')
+    wait_for(lambda: _gone(child), 60, what='child gone')
 
 
 def test_stop_kills_a_grandchild_in_another_session(tmp_path):
     """roslaunch-style: the child starts a grandchild with setsid; stop() still kills it."""
     pidfile = tmp_path / 'gc'
     p = Proc(['bash', '-c', 'setsid sleep 300 & echo $! > %s; wait' % pidfile])
-    wait_for(lambda: pidfile.exists() and pidfile.read_text().strip(), 5)
+    wait_for(lambda: pidfile.exists() and pidfile.read_text().strip(), 60)
     gc = int(pidfile.read_text())
     assert os.getpgid(gc) != p.pid
     p.stop()
-    wait_for(lambda: _gone(gc), 5, what='grandchild gone')
+    wait_for(lambda: _gone(gc), 60, what='grandchild gone')
 
 
 def test_run_times_out_and_kills_tree(tmp_path):
@@ -50,7 +50,7 @@ def test_run_times_out_and_kills_tree(tmp_path):
                         log=str(tmp_path / 'log'))
     assert rc is None and timed_out
     gc = int(pidfile.read_text())
-    wait_for(lambda: _gone(gc), 5, what='grandchild gone')
+    wait_for(lambda: _gone(gc), 60, what='grandchild gone')
 
 
 def _gone(pid):

@@ -8,7 +8,12 @@ from course_testing.proc import Proc
 
 class Xvfb:
     """Start Xvfb on a display number the X server picks itself (-displayfd), so concurrent
-    test runs never race for the same number; `env` is os.environ with DISPLAY set."""
+    test runs never race for the same number; `env` is os.environ with DISPLAY set.
+
+    -noreset: by default an X server resets itself whenever its last client disconnects, and a
+    client connecting during that reset fails with "could not connect to display" — what two
+    turtlesim windows of one launch file hit when a short-lived client (a probe, the first
+    window's helper connection) had just left. A test's display must simply stay up."""
 
     def __init__(self, width=1024, height=768, depth=24):
         self.size = (width, height, depth)
@@ -20,7 +25,7 @@ class Xvfb:
         rfd, wfd = os.pipe()
         try:
             self.proc = Proc(['Xvfb', '-displayfd', str(wfd), '-screen', '0', '%dx%dx%d' % self.size,
-                              '-nolisten', 'tcp'], pass_fds=(wfd,))
+                              '-nolisten', 'tcp', '-noreset'], pass_fds=(wfd,))
             os.close(wfd)
             wfd = None
             number = b''
