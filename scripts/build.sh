@@ -10,6 +10,8 @@ cd "$REPO/catkin_ws"
 mkdir -p "$REPO/.deps"
 exec 9>"$REPO/.deps/build.lock"; flock 9     # one catkin_make at a time in this workspace
 launcher=()
+# ccache keyed on paths relative to the repository: a fresh clone elsewhere hits the cache
+export CCACHE_BASEDIR="$REPO" CCACHE_NOHASHDIR=1
 if command -v ccache >/dev/null; then
     launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
 fi

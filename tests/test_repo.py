@@ -103,10 +103,15 @@ def test_workspace_builds_with_catkin_tools(tmp_path):
     top = src / 'CMakeLists.txt'
     if top.is_symlink() or top.exists():
         top.unlink()   # catkin_make's toplevel link; catkin build does not use it
-    env = dict(os.environ, PATH='/usr/bin:/bin:' + os.environ['PATH'])
     ws = str(tmp_path / 'ws')
+    # ccache with paths relative to the workspace: the C++ packages compile once per machine,
+    # not once per run of this test
+    env = dict(os.environ, PATH='/usr/bin:/bin:' + os.environ['PATH'], CCACHE_BASEDIR=ws,
+               CCACHE_NOHASHDIR='1')
     for cmd in (['catkin', 'init'],
-                ['catkin', 'config', '--cmake-args', '-DPYTHON_EXECUTABLE=/usr/bin/python3'],
+                ['catkin', 'config', '--cmake-args', '-DPYTHON_EXECUTABLE=/usr/bin/python3',
+                 '-DCMAKE_BUILD_TYPE=Release', '-DCMAKE_CXX_COMPILER_LAUNCHER=ccache',
+                 '-DCMAKE_C_COMPILER_LAUNCHER=ccache'],
                 ['catkin', 'build', '--no-status', '--no-notify']):
         r = subprocess.run(cmd, cwd=ws, env=env, capture_output=True, text=True, timeout=900)
         assert r.returncode == 0, '%s failed:\n%s' % (' '.join(cmd), (r.stdout + r.stderr)[-3000:])
