@@ -39,6 +39,7 @@ def one_round(k, args, env):
         p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env, cwd=REPO)
         for line in p.stdout:       # the round's progress on the terminal and in its log
             fh.write(line)
+            fh.flush()
             if line.startswith(('===', 'FAILED', '    FAILED')) or 'passed,' in line:
                 print('  [%d] %s' % (k, line.rstrip()), flush=True)
         p.wait()
