@@ -48,9 +48,7 @@ class JointStateControllerTest(unittest.TestCase):
         with self.lock:
             return len([m for m in self.msgs[topic] if start <= m.header.stamp < end])
 
-    def test_publishes_every_joint_at_publish_rate(self):
-        if MODE != 'all':
-            self.skipTest('joint_state_controller.test')
+    def test_all_publishes_every_joint_at_publish_rate(self):
         start = rospy.Time.now() + rospy.Duration(0.1)
         self.assertIn(self.count_in('/joint_states', start, 2.0), (99, 100, 101))
         with self.lock:
@@ -61,8 +59,6 @@ class JointStateControllerTest(unittest.TestCase):
         self.assertEqual(len(msg.effort), 3)
 
     def test_subset_order_and_extra_joints(self):
-        if MODE != 'subset':
-            self.skipTest('joint_state_subset.test')
         start = rospy.Time.now() + rospy.Duration(0.1)
         self.assertIn(self.count_in('/joint_states', start, 2.0), (39, 40, 41))
         with self.lock:
@@ -71,9 +67,7 @@ class JointStateControllerTest(unittest.TestCase):
         self.assertEqual(list(msg.position), [0.25, 0.0, 0.5])
         self.assertEqual(msg.effort[2], -1.0)
 
-    def test_missing_publish_rate_fails(self):
-        if MODE != 'all':
-            self.skipTest('joint_state_controller.test')
+    def test_all_missing_publish_rate_fails(self):
         load = rospy.ServiceProxy('/controller_manager/load_controller', LoadController)
         self.assertFalse(load('no_rate_controller').ok)
         wait_for('the original message', lambda: any("Parameter 'publish_rate' not set" in m
@@ -83,9 +77,7 @@ class JointStateControllerTest(unittest.TestCase):
                                                     ListControllers)().controller]
         self.assertNotIn('no_rate_controller', names)
 
-    def test_malformed_extra_joint_is_skipped(self):
-        if MODE != 'all':
-            self.skipTest('joint_state_controller.test')
+    def test_all_malformed_extra_joint_is_skipped(self):
         load = rospy.ServiceProxy('/controller_manager/load_controller', LoadController)
         self.assertTrue(load('bad_extra_controller').ok)
         wait_for('the original message', lambda: any(
@@ -95,4 +87,7 @@ class JointStateControllerTest(unittest.TestCase):
 
 if __name__ == '__main__':
     MODE = 'subset' if 'subset' in rospy.myargv(sys.argv)[1:] else 'all'
+    for attr in list(vars(JointStateControllerTest)):
+        if attr.startswith('test_') and not attr.startswith('test_%s_' % MODE):
+            delattr(JointStateControllerTest, attr)
     rostest.rosrun('joint_state_controller', 'joint_state_controller', JointStateControllerTest, sys.argv)
