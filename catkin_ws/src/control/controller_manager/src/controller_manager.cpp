@@ -83,6 +83,7 @@ void ControllerManager::update(const ros::Time& time, const ros::Duration& perio
       {
         robot_hw_->doSwitch(switch_start_list_, switch_stop_list_);
         switch_params_.started = true;
+        switch_params_.init_time = time;  // the timeout runs on the loop's clock
       }
       stopControllers(time);
       if (switch_params_.start_asap)
@@ -450,7 +451,6 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
   switch_params_ = SwitchParams();
   switch_params_.strictness = strictness;
   switch_params_.start_asap = start_asap;
-  switch_params_.init_time = ros::Time::now();
   switch_params_.timeout = timeout;
   switch_params_.do_switch = true;
   switch_pending_ = true;
