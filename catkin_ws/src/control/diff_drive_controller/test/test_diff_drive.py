@@ -255,6 +255,24 @@ class DiffDriveTest(unittest.TestCase):
             proc.wait(timeout=30)
             other.unregister()
 
+    def test_options_z_dynamic_reconfigure(self):
+        import dynamic_reconfigure.client
+        client = dynamic_reconfigure.client.Client('/diffbot_controller', timeout=WALL_TIMEOUT)
+        client.update_configuration({'left_wheel_radius_multiplier': 1.5, 'right_wheel_radius_multiplier': 1.5,
+                                     'publish_rate': 10.0})
+        self.drive(0.33, 0.0, 1.0)
+        left, right = self.wheel_velocities()
+        self.assertAlmostEqual(left, 0.33 / (1.5 * WHEEL_RADIUS), delta=1e-6)
+        start = rospy.Time.now() + rospy.Duration(0.1)
+        end = start + rospy.Duration(2.0)
+        self.drive(0.33, 0.0, 2.5)
+        with self.lock:
+            stamps = [m.header.stamp for m in self.odom if start <= m.header.stamp < end]
+        self.assertIn(len(stamps), (19, 20, 21))   # 10 Hz over 2 s of sim time
+        client.update_configuration({'left_wheel_radius_multiplier': 1.0, 'right_wheel_radius_multiplier': 1.0,
+                                     'publish_rate': 50.0})
+        self.drive(0.0, 0.0, 0.3)
+
     # --- fail ---------------------------------------------------------------------------------
     def _load_fails_with(self, name, message):
         self.assertFalse(self.load(name).ok, '%s came up although misconfigured' % name)
