@@ -22,6 +22,29 @@ using controller_manager_tests::DummyRobotHW;
 using hardware_interface::RobotHW;
 typedef controller_manager_msgs::SwitchController::Request Req;
 
+/// Throws from update() (after \p ok_updates updates) or from starting().
+class ThrowingController : public controller_interface::Controller<hardware_interface::JointStateInterface>
+{
+public:
+  bool init(hardware_interface::JointStateInterface* /*hw*/, ros::NodeHandle& nh) override
+  {
+    throw_in_starting_ = nh.param("throw_in_starting", false);
+    return true;
+  }
+  void starting(const ros::Time& /*time*/) override
+  {
+    if (throw_in_starting_)
+      throw std::runtime_error("starting failed on purpose");
+  }
+  void update(const ros::Time& /*time*/, const ros::Duration& /*period*/) override
+  {
+    if (++updates_ > 3)
+      throw std::runtime_error("update failed on purpose");
+  }
+  int updates_ = 0;
+  bool throw_in_starting_ = false;
+};
+
 /// Creates the test controllers in-process (besides the pluginlib loader).
 class LocalLoader : public controller_manager::ControllerLoaderInterface
 {
@@ -37,13 +60,15 @@ public:
       return std::make_shared<controller_manager_tests::StateTestController>();
     if (type == "local/Multi")
       return std::make_shared<controller_manager_tests::MultiTestController>();
+    if (type == "local/Throwing")
+      return std::make_shared<ThrowingController>();
     if (type == "local/Throws")
       throw std::runtime_error("this loader refuses local/Throws");
     return nullptr;
   }
   std::vector<std::string> getDeclaredClasses() override
   {
-    return { "local/Effort", "local/Velocity", "local/State", "local/Multi", "local/Throws" };
+    return { "local/Effort", "local/Velocity", "local/State", "local/Multi", "local/Throws", "local/Throwing" };
   }
   void reload() override {}
 };
@@ -320,6 +345,22 @@ TEST_F(CMSwitchTest, ResetRestartsRunningControllers)
   EXPECT_EQ(1, a->stops_);
   EXPECT_EQ(0, b->starts_);
   EXPECT_EQ("running", cm_->state("a"));
+}
+
+TEST_F(CMSwitchTest, ThrowingControllerIsAbortedNotFatal)
+{
+  ASSERT_TRUE(load("bad", "local/Throwing"));
+  ASSERT_TRUE(load("good", "local/Effort", { "joint1" }));
+  ASSERT_TRUE(cm_->switchController({ "bad", "good" }, {}, Req::STRICT));
+  waitCycles(10);
+  EXPECT_EQ("aborted", cm_->state("bad"));
+  EXPECT_EQ("running", cm_->state("good"));
+  nh_.setParam("bad_start/throw_in_starting", true);
+  ASSERT_TRUE(load("bad_start", "local/Throwing"));
+  EXPECT_TRUE(cm_->switchController({ "bad_start" }, {}, Req::STRICT));
+  EXPECT_EQ("aborted", cm_->state("bad_start"));
+  EXPECT_TRUE(cm_->unloadController("bad"));
+  EXPECT_TRUE(cm_->unloadController("bad_start"));
 }
 
 int main(int argc, char** argv)
