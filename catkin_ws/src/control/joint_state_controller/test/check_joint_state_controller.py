@@ -50,7 +50,9 @@ class JointStateControllerTest(unittest.TestCase):
 
     def test_all_publishes_every_joint_at_publish_rate(self):
         start = rospy.Time.now() + rospy.Duration(0.1)
-        self.assertIn(self.count_in('/joint_states', start, 2.0), (99, 100, 101))
+        # 100 in 2 s; a publish skipped while the publishing thread is busy comes one cycle
+        # later, so a few may fall just outside the window on a loaded machine
+        self.assertIn(self.count_in('/joint_states', start, 2.0), range(95, 102))
         with self.lock:
             msg = self.msgs['/joint_states'][-1]
         self.assertEqual(msg.name, ['a_joint', 'b_joint', 'c_joint'])   # interface order (sorted)
@@ -60,7 +62,7 @@ class JointStateControllerTest(unittest.TestCase):
 
     def test_subset_order_and_extra_joints(self):
         start = rospy.Time.now() + rospy.Duration(0.1)
-        self.assertIn(self.count_in('/joint_states', start, 2.0), (39, 40, 41))
+        self.assertIn(self.count_in('/joint_states', start, 2.0), range(36, 42))
         with self.lock:
             msg = self.msgs['/joint_states'][-1]
         self.assertEqual(msg.name, ['b_joint', 'a_joint', 'fixed_extra'])
