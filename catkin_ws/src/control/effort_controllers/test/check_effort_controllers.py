@@ -100,6 +100,20 @@ class EffortControllersTest(unittest.TestCase):
         self.assertEqual((state.p, state.i, state.d), (100.0, 0.01, 10.0))
         self.assertFalse(state.antiwindup)
 
+    def test_position_pid_tuned_with_dynamic_reconfigure(self):
+        # practical work 5's self-study: tune the PID while it runs
+        import dynamic_reconfigure.client
+        client = dynamic_reconfigure.client.Client('/prismatic_position_controller/pid', timeout=WALL_TIMEOUT)
+        client.update_configuration({'p': 150.0, 'd': 25.0})
+        f = self.f
+
+        def gains_in_state():
+            with f.lock:
+                s = f.states.get('prismatic_position_controller')
+            return s is not None and (s.p, s.d) == (150.0, 25.0)
+        f.wait_for('new gains in the state topic', gains_in_state, 5.0)
+        self.assertEqual(rospy.get_param('/prismatic_position_controller/pid/p'), 150.0)
+
     def test_position_set_point_clamped_to_limits(self):
         f = self.f
         f.publish('/prismatic_position_controller/command', Float64, 2.0)   # limit 0.5
