@@ -296,6 +296,27 @@ class DiffDriveTest(unittest.TestCase):
                                      'publish_rate': 50.0})
         self.drive(0.0, 0.0, 0.3)
 
+    # --- multiwheel ---------------------------------------------------------------------------
+    def test_multiwheel_forward_and_turn(self):
+        self.drive(0.5, 0.2, 1.0)
+        start = self.last_odom()
+        self.drive(0.5, 0.2, 2.0)
+        end = self.last_odom()
+        dt = (end.header.stamp - start.header.stamp).to_sec()
+        turned = yaw_of(end.pose.pose.orientation) - yaw_of(start.pose.pose.orientation)
+        self.assertAlmostEqual(turned, 0.2 * dt, delta=ORIENTATION_TOLERANCE)
+        chord = math.hypot(end.pose.pose.position.x - start.pose.pose.position.x,
+                           end.pose.pose.position.y - start.pose.pose.position.y)
+        # arc of radius v / w: chord = 2 (v / w) sin(w dt / 2)
+        self.assertAlmostEqual(chord, 2 * (0.5 / 0.2) * math.sin(0.2 * dt / 2), delta=POSITION_TOLERANCE)
+        with self.lock:
+            js = self.js
+        vel = dict(zip(js.name, js.velocity))
+        self.assertEqual(vel['wheel_0_joint'], vel['wheel_2_joint'])
+        self.assertEqual(vel['wheel_1_joint'], vel['wheel_3_joint'])
+        self.assertAlmostEqual(vel['wheel_0_joint'], (0.5 - 0.2 * WHEEL_SEPARATION / 2) / WHEEL_RADIUS, delta=1e-6)
+        self.drive(0.0, 0.0, 0.3)
+
     # --- fail ---------------------------------------------------------------------------------
     def _load_fails_with(self, name, message):
         self.assertFalse(self.load(name).ok, '%s came up although misconfigured' % name)
