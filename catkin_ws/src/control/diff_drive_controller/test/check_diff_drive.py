@@ -10,6 +10,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from control_msgs.msg import JointTrajectoryControllerState
@@ -35,6 +36,16 @@ def yaw_of(q):
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class DiffDriveTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -52,12 +63,13 @@ class DiffDriveTest(unittest.TestCase):
         rospy.Subscriber('/diffbot_controller/cmd_vel_out', TwistStamped, cls._set, 'cmd_out')
         rospy.Subscriber('/diffbot_controller/wheel_joint_controller_state', JointTrajectoryControllerState,
                          cls._set, 'wheel_state')
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=1000)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=1000)
         cls.cmd_pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=10)
         rospy.wait_for_service(CM + 'list_controllers', WALL_TIMEOUT)
         cls.list = rospy.ServiceProxy(CM + 'list_controllers', ListControllers)
         cls.load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
         cls.switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
+        cls.wait_for('/rosout of the diffbot', lambda: rosout_connected(cls.rosout, '/diffbot'))
         if MODE != 'fail':
             cls.wait_for('diffbot_controller running',
                          lambda: cls.state_of('diffbot_controller') == 'running')

@@ -7,6 +7,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from control_msgs.msg import JointControllerState
@@ -20,6 +21,16 @@ RUNNING = ['joint_state_controller', 'position_controller', 'continuous_position
            'prismatic_position_controller', 'group_position_controller', 'effort_controller']
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class Fixture(object):
     def __init__(self):
         self.lock = threading.Lock()
@@ -27,7 +38,7 @@ class Fixture(object):
         self.states = {}
         self.logs = []
         rospy.Subscriber('/joint_states', JointState, self._js)
-        rospy.Subscriber('/rosout', Log, self._log)
+        self.rosout = rospy.Subscriber('/rosout', Log, self._log)
         for name in ('position_controller', 'continuous_position_controller',
                      'prismatic_position_controller'):
             rospy.Subscriber('/%s/state' % name, JointControllerState, self._state, name)
@@ -88,6 +99,7 @@ class EffortControllersTest(unittest.TestCase):
             return all(states.get(n) == 'running' for n in RUNNING)
         cls.f.wait_for('spawner starts every controller', all_running)
         cls.f.wait_for('first /joint_states', lambda: cls.f.joint_states is not None)
+        cls.f.wait_for('/rosout of the robot', lambda: rosout_connected(cls.f.rosout, '/test_robot'))
 
     def test_position_controller_converges(self):
         f = self.f

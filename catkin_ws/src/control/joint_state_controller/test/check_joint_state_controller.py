@@ -5,6 +5,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from controller_manager_msgs.srv import ListControllers, LoadController
@@ -23,6 +24,16 @@ def wait_for(what, condition):
         time.sleep(0.01)
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class JointStateControllerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -32,9 +43,10 @@ class JointStateControllerTest(unittest.TestCase):
         cls.logs = []
         for topic in cls.msgs:
             rospy.Subscriber(topic, JointState, cls._js, topic, queue_size=100)
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
         rospy.wait_for_service('/controller_manager/list_controllers', WALL_TIMEOUT)
         wait_for('first messages', lambda: all(cls.msgs.values()))
+        wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
 
     @classmethod
     def _js(cls, msg, topic):
