@@ -21,11 +21,22 @@ the contract documented in doc/ros_control_bridge.md:
   joint_commands; after `NS/ode_sim/lockstep_timeout` (1.0 s) it warns once and steps on until
   commands flow again.
 
+- the controller manager: when ROS is up the plugin starts gazebo_ros_control's
+  `gazebo_ros_control_node` in NS as a child process (the C++ DefaultRobotHWSim +
+  controller_manager, the controller side of the contract), as gzserver loads
+  gazebo_ros_control; it is stopped with the plugin (model deleted, simulator exits) and
+  exits by itself if the simulator dies. `<controllerNode>false</controllerNode>` (an ode_sim
+  extension) starts none: a RobotHW of one's own speaks the topics.
+
 Tags as gazebo_ros_control (noetic): robotNamespace (model name), robotParam
 (robot_description; the transmissions come with the model here), robotSimType (only
-gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none).
+gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none);
+ode_sim's controllerNode (true).
 """
 import math
+import os
+import signal
+import subprocess
 import threading
 import time
 
@@ -41,6 +52,9 @@ STATE = 'JointStateInterface'
 COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
 DEFAULT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
 DEFAULT_LOCKSTEP_TIMEOUT = 1.0
+NODE_PACKAGE = 'gazebo_ros_control'
+NODE_TYPE = 'gazebo_ros_control_node'
+NODE_STOP_TIMEOUT = 5.0             # wall seconds between SIGINT and SIGKILL
 
 
 def bare_interface(name):
@@ -154,6 +168,8 @@ class GazeboRosControl(Plugin):
         else:
             self.control_period = dt
         self.estop_topic = self.param('eStopTopic', '', warn=False).strip()
+        self.start_node = self.param('controllerNode', True, bool, warn=False)
+        self.node_proc = None
         self.joints = self._joints_from_transmissions()
         self.by_name = {j.name: j for j in self.joints}
         self.lockstep_timeout = DEFAULT_LOCKSTEP_TIMEOUT
@@ -176,7 +192,8 @@ class GazeboRosControl(Plugin):
         self.state_topic = self.topic('ode_sim/joint_states')
         self.command_topic = self.topic('ode_sim/joint_commands')
         self.state_pub = publisher(self.state_topic, JointState, queue_size=10)
-        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10)
+        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10,
+                                  tcp_nodelay=True)
         self.estop_sub = None
         if self.estop_topic:
             from std_msgs.msg import Bool
@@ -187,6 +204,8 @@ class GazeboRosControl(Plugin):
             rospy.logwarn("gazebo_ros_control: model '%s' has no <transmission>: nothing to "
                           "control" % model.name)
         rospy.loginfo("Starting gazebo_ros_control plugin in namespace: %s" % (self.ns or '/'))
+        if ros_up() and self.start_node:
+            self._start_controller_node()
 
     # ------------------------------------------------------------------ setup
     def _joints_from_transmissions(self):
@@ -254,6 +273,39 @@ class GazeboRosControl(Plugin):
                     raise self.error("%s: PID gains must be numbers, got %r" % (ns, gains))
             else:
                 rospy.logerr("No p gain specified for pid.  Namespace: %s" % ns)
+
+    def _start_controller_node(self):
+        """gazebo_ros_control_node in NS: DefaultRobotHWSim + controller_manager."""
+        from roslib.packages import find_node
+        try:
+            found = find_node(NODE_PACKAGE, NODE_TYPE)
+        except Exception:           # package unknown to rospack
+            found = []
+        if not found:
+            rospy.logerr("gazebo_ros_control: %s/%s not found: no controller manager runs in "
+                         "namespace %s (build the workspace: catkin_make, then source "
+                         "devel/setup.bash; or set <controllerNode>false</controllerNode> to "
+                         "run a RobotHW of your own)" % (NODE_PACKAGE, NODE_TYPE, self.ns or '/'))
+            return
+        ns = '/' + self.ns.strip('/')
+        cmd = [found[0], '__ns:=' + ns, '__name:=gazebo_ros_control',
+               '--parent-pid', str(os.getpid())]
+        if self.estop_topic:
+            cmd += ['--estop-topic', self.estop_topic]
+        self.node_proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL)
+        rospy.loginfo("gazebo_ros_control: started the controller manager node in %s (pid %d)"
+                      % (ns, self.node_proc.pid))
+
+    def _stop_controller_node(self):
+        proc, self.node_proc = self.node_proc, None
+        if proc is None or proc.poll() is not None:
+            return
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(NODE_STOP_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
 
     def set_pid_gains(self, joint, p, i=0.0, d=0.0, i_clamp=0.0, i_clamp_min=None,
                       i_clamp_max=None):
@@ -397,6 +449,7 @@ class GazeboRosControl(Plugin):
         with self._cond:
             self._closing = True
             self._cond.notify_all()
+        self._stop_controller_node()
         close(self.state_pub, self.cmd_sub, self.estop_sub)
 
 
