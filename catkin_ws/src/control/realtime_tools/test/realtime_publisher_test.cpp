@@ -1,0 +1,62 @@
+// rostest node: RealtimePublisher delivers what the realtime side hands over, and trylock()
+// refuses while the previous message is still waiting to be published.
+#include <gtest/gtest.h>
+
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+
+#include <realtime_tools/realtime_publisher.h>
+
+TEST(RealtimePublisher, PublishesHandedOverMessages)
+{
+  ros::NodeHandle nh("~");
+  std::vector<double> received;
+  std::mutex mutex;
+  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>(
+      "out", 10, [&](const std_msgs::Float64::ConstPtr& msg) {
+        std::lock_guard<std::mutex> guard(mutex);
+        received.push_back(msg->data);
+      });
+  realtime_tools::RealtimePublisher<std_msgs::Float64> pub(nh, "out", 10);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  for (int i = 0; i < 3000 && sub.getNumPublishers() == 0; ++i)
+    ros::WallDuration(0.01).sleep();
+  ASSERT_EQ(1u, sub.getNumPublishers()) << "subscriber never connected to the realtime publisher";
+
+  int handed_over = 0;
+  for (int value = 1; value <= 5; ++value)
+  {
+    // wait until the previous message has been taken by the publishing thread
+    int tries = 0;
+    while (!pub.trylock())
+    {
+      ASSERT_LT(++tries, 100000) << "trylock() never succeeded again";
+      ros::WallDuration(0.0001).sleep();
+    }
+    pub.msg_.data = value;
+    pub.unlockAndPublish();
+    ++handed_over;
+  }
+  for (int i = 0; i < 3000; ++i)
+  {
+    {
+      std::lock_guard<std::mutex> guard(mutex);
+      if (received.size() == 5u)
+        break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  std::lock_guard<std::mutex> guard(mutex);
+  ASSERT_EQ(5u, received.size()) << "not every handed-over message arrived";
+  for (int i = 0; i < 5; ++i)
+    EXPECT_EQ(i + 1.0, received[i]);
+  EXPECT_TRUE(pub.is_running());
+}
+
+int main(int argc, char** argv)
+{
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "realtime_publisher_test");
+  return RUN_ALL_TESTS();
+}
