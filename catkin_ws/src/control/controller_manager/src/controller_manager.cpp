@@ -1,0 +1,640 @@
+// Re-implementation of ros_control's controller_manager (Noetic 0.20 API) for Debian 12.
+#include <controller_manager/controller_manager.h>
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+#include <set>
+
+#include <controller_manager/controller_loader.h>
+#include <controller_manager_msgs/ControllerState.h>
+
+namespace controller_manager
+{
+typedef controller_manager_msgs::SwitchController::Request SwitchRequest;
+
+ControllerManager::ControllerManager(hardware_interface::RobotHW* robot_hw, const ros::NodeHandle& nh)
+  : robot_hw_(robot_hw), root_nh_(nh), cm_node_(nh, "controller_manager")
+{
+  try
+  {
+    controller_loaders_.push_back(std::make_shared<ControllerLoader<controller_interface::ControllerBase>>(
+        "controller_interface", "controller_interface::ControllerBase"));
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("Controller manager: cannot create the controller plugin loader (package controller_interface, "
+              "base class controller_interface::ControllerBase): %s. Only registered loaders will be used.",
+              e.what());
+  }
+
+  // Advertise services last: callbacks may come at once.
+  srv_list_controllers_ = cm_node_.advertiseService("list_controllers", &ControllerManager::listControllersSrv, this);
+  srv_list_controller_types_ =
+      cm_node_.advertiseService("list_controller_types", &ControllerManager::listControllerTypesSrv, this);
+  srv_load_controller_ = cm_node_.advertiseService("load_controller", &ControllerManager::loadControllerSrv, this);
+  srv_unload_controller_ =
+      cm_node_.advertiseService("unload_controller", &ControllerManager::unloadControllerSrv, this);
+  srv_switch_controller_ =
+      cm_node_.advertiseService("switch_controller", &ControllerManager::switchControllerSrv, this);
+  srv_reload_libraries_ =
+      cm_node_.advertiseService("reload_controller_libraries", &ControllerManager::reloadControllerLibrariesSrv, this);
+}
+
+ControllerManager::~ControllerManager()
+{
+  srv_list_controllers_.shutdown();
+  srv_list_controller_types_.shutdown();
+  srv_load_controller_.shutdown();
+  srv_unload_controller_.shutdown();
+  srv_switch_controller_.shutdown();
+  srv_reload_libraries_.shutdown();
+  std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+  controllers_.clear();  // before the loaders that own their libraries
+}
+
+// ------------------------------------------------------------------------------------------ realtime
+
+void ControllerManager::update(const ros::Time& time, const ros::Duration& period, bool reset_controllers)
+{
+  std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+
+  if (reset_controllers)
+  {
+    for (ControllerSpec& spec : controllers_)
+    {
+      if (spec.c->isRunning())
+      {
+        spec.c->stopRequest(time);
+        spec.c->startRequest(time);
+      }
+    }
+  }
+
+  for (ControllerSpec& spec : controllers_)
+    spec.c->updateRequest(time, period);
+
+  if (switch_pending_.load())
+  {
+    std::lock_guard<std::mutex> switch_guard(switch_lock_);
+    if (switch_params_.do_switch)
+    {
+      if (!switch_params_.started)
+      {
+        robot_hw_->doSwitch(switch_start_list_, switch_stop_list_);
+        switch_params_.started = true;
+      }
+      stopControllers(time);
+      if (switch_params_.start_asap)
+        startControllersAsap(time);
+      else
+        startControllers(time);
+      if (!switch_params_.do_switch)
+      {
+        switch_pending_ = false;
+        switch_done_.notify_all();
+      }
+    }
+  }
+}
+
+void ControllerManager::stopControllers(const ros::Time& time)
+{
+  for (controller_interface::ControllerBase* request : stop_request_)
+  {
+    if (request->isRunning() && !request->stopRequest(time))
+      ROS_FATAL("Failed to stop controller in realtime loop. This should never happen.");
+  }
+}
+
+void ControllerManager::startControllers(const ros::Time& time)
+{
+  const hardware_interface::RobotHW::SwitchState result = robot_hw_->switchResult();
+  if (result == hardware_interface::RobotHW::SwitchState::DONE)
+  {
+    for (controller_interface::ControllerBase* request : start_request_)
+    {
+      if (!request->startRequest(time))
+        ROS_FATAL("Failed to start controller in realtime loop. This should never happen.");
+    }
+    switch_params_.do_switch = false;
+  }
+  else if (result == hardware_interface::RobotHW::SwitchState::ERROR ||
+           (switch_params_.timeout > 0.0 && (time - switch_params_.init_time).toSec() > switch_params_.timeout))
+  {
+    for (controller_interface::ControllerBase* request : start_request_)
+      request->abortRequest(time);
+    switch_params_.do_switch = false;
+  }
+  else
+  {
+    for (controller_interface::ControllerBase* request : start_request_)
+      request->waitRequest(time);
+  }
+}
+
+void ControllerManager::startControllersAsap(const ros::Time& time)
+{
+  for (controller_interface::ControllerBase* request : start_request_)
+  {
+    if (request->isRunning() || request->isAborted())
+      continue;
+    for (const ControllerSpec& spec : controllers_)
+    {
+      if (spec.c.get() != request)
+        continue;
+      const hardware_interface::RobotHW::SwitchState result = robot_hw_->switchResult(spec.info);
+      if (result == hardware_interface::RobotHW::SwitchState::DONE)
+        request->startRequest(time);
+      else if (result == hardware_interface::RobotHW::SwitchState::ERROR ||
+               (switch_params_.timeout > 0.0 && (time - switch_params_.init_time).toSec() > switch_params_.timeout))
+        request->abortRequest(time);
+      else
+        request->waitRequest(time);
+      break;
+    }
+  }
+  if (std::all_of(start_request_.begin(), start_request_.end(),
+                  [](controller_interface::ControllerBase* r) { return r->isRunning() || r->isAborted(); }))
+    switch_params_.do_switch = false;
+}
+
+// -------------------------------------------------------------------------------------- non-realtime
+
+controller_interface::ControllerBase* ControllerManager::getControllerByName(const std::string& name)
+{
+  std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+  for (const ControllerSpec& spec : controllers_)
+  {
+    if (spec.info.name == name)
+      return spec.c.get();
+  }
+  return nullptr;
+}
+
+void ControllerManager::getControllerNames(std::vector<std::string>& names)
+{
+  std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+  names.clear();
+  for (const ControllerSpec& spec : controllers_)
+    names.push_back(spec.info.name);
+}
+
+void ControllerManager::registerControllerLoader(ControllerLoaderInterfaceSharedPtr controller_loader)
+{
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+  controller_loaders_.push_back(controller_loader);
+}
+
+bool ControllerManager::loadController(const std::string& name)
+{
+  ROS_DEBUG("Will load controller '%s'", name.c_str());
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+
+  if (getControllerByName(name))
+  {
+    ROS_ERROR("A controller named '%s' was already loaded inside the controller manager", name.c_str());
+    return false;
+  }
+
+  ros::NodeHandle c_nh;
+  try
+  {
+    c_nh = ros::NodeHandle(root_nh_, name);
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("Exception thrown while constructing nodehandle for controller with name '%s':\n%s", name.c_str(),
+              e.what());
+    return false;
+  }
+
+  std::string type;
+  if (!c_nh.getParam("type", type))
+  {
+    ROS_ERROR("Could not load controller '%s' because the type was not specified. Did you load the controller "
+              "configuration on the parameter server (namespace: '%s')?",
+              name.c_str(), c_nh.getNamespace().c_str());
+    return false;
+  }
+
+  ROS_DEBUG("Constructing controller '%s' of type '%s'", name.c_str(), type.c_str());
+  controller_interface::ControllerBaseSharedPtr c;
+  try
+  {
+    for (auto it = controller_loaders_.begin(); !c && it != controller_loaders_.end(); ++it)
+    {
+      const std::vector<std::string> types = (*it)->getDeclaredClasses();
+      if (std::find(types.begin(), types.end(), type) != types.end())
+        c = (*it)->createInstance(type);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("Could not load class %s: %s", type.c_str(), e.what());
+  }
+
+  if (!c)
+  {
+    ROS_ERROR("Could not load controller '%s' because controller type '%s' does not exist.", name.c_str(),
+              type.c_str());
+    ROS_ERROR("Use 'rosservice call controller_manager/list_controller_types' to get the available types");
+    return false;
+  }
+
+  ROS_DEBUG("Initializing controller '%s'", name.c_str());
+  bool initialized = false;
+  controller_interface::ControllerBase::ClaimedResources claimed_resources;
+  try
+  {
+    initialized = c->initRequest(robot_hw_, root_nh_, c_nh, claimed_resources);
+  }
+  catch (const std::exception& e)
+  {
+    ROS_ERROR("Exception thrown while initializing controller %s.\n%s", name.c_str(), e.what());
+    initialized = false;
+  }
+  catch (...)
+  {
+    ROS_ERROR("Exception thrown while initializing controller %s", name.c_str());
+    initialized = false;
+  }
+  if (!initialized)
+  {
+    ROS_ERROR("Initializing controller '%s' failed", name.c_str());
+    return false;
+  }
+
+  ControllerSpec spec;
+  spec.info.name = name;
+  spec.info.type = type;
+  spec.info.claimed_resources = claimed_resources;
+  spec.c = c;
+  {
+    std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+    controllers_.push_back(spec);
+  }
+  ROS_DEBUG("Successfully load controller '%s'", name.c_str());
+  return true;
+}
+
+bool ControllerManager::unloadController(const std::string& name)
+{
+  ROS_DEBUG("Will unload controller '%s'", name.c_str());
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+
+  ControllerSpec removed;
+  {
+    std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+    auto it = std::find_if(controllers_.begin(), controllers_.end(),
+                           [&name](const ControllerSpec& spec) { return spec.info.name == name; });
+    if (it == controllers_.end())
+    {
+      ROS_ERROR("Could not unload controller with name %s because no controller with this name exists",
+                name.c_str());
+      return false;
+    }
+    if (it->c->isRunning())
+    {
+      ROS_ERROR("Could not unload controller with name %s because it is still running", name.c_str());
+      return false;
+    }
+    removed = *it;
+    controllers_.erase(it);
+  }
+  removed.c.reset();  // destroyed here, outside the realtime lock
+  ROS_DEBUG("Successfully unloaded controller '%s'", name.c_str());
+  return true;
+}
+
+void ControllerManager::clearSwitchRequest()
+{
+  start_request_.clear();
+  stop_request_.clear();
+  switch_start_list_.clear();
+  switch_stop_list_.clear();
+}
+
+bool ControllerManager::switchController(const std::vector<std::string>& start_controllers,
+                                         const std::vector<std::string>& stop_controllers, const int strictness_in,
+                                         bool start_asap, double timeout)
+{
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+  int strictness = strictness_in;
+  if (strictness == 0)
+  {
+    ROS_WARN("Controller Manager: To switch controllers you need to specify a strictness level of "
+             "controller_manager_msgs::SwitchController::STRICT (%d) or ::BEST_EFFORT (%d). "
+             "Defaulting to ::BEST_EFFORT.",
+             SwitchRequest::STRICT, SwitchRequest::BEST_EFFORT);
+    strictness = SwitchRequest::BEST_EFFORT;
+  }
+  const bool strict = strictness == SwitchRequest::STRICT;
+
+  // Switches are serialised by services_lock_ and none is pending here, so update() does not
+  // read the request lists while they are prepared (switch_lock_ is taken only to hand over:
+  // update() holds controllers_lock_ before switch_lock_, never the other way round).
+  clearSwitchRequest();
+
+  for (const std::string& name : stop_controllers)
+  {
+    controller_interface::ControllerBase* ct = getControllerByName(name);
+    if (!ct)
+    {
+      if (strict)
+      {
+        ROS_ERROR("Could not stop controller with name %s because no controller with this name exists", name.c_str());
+        clearSwitchRequest();
+        return false;
+      }
+      ROS_DEBUG("Could not stop controller with name %s because no controller with this name exists", name.c_str());
+    }
+    else
+    {
+      stop_request_.push_back(ct);
+    }
+  }
+
+  for (const std::string& name : start_controllers)
+  {
+    controller_interface::ControllerBase* ct = getControllerByName(name);
+    if (!ct)
+    {
+      if (strict)
+      {
+        ROS_ERROR("Could not start controller with name %s because no controller with this name exists",
+                  name.c_str());
+        clearSwitchRequest();
+        return false;
+      }
+      ROS_DEBUG("Could not start controller with name %s because no controller with this name exists", name.c_str());
+    }
+    else
+    {
+      start_request_.push_back(ct);
+    }
+  }
+
+  // Resource checks on the set of controllers that would be running after the switch.
+  std::list<hardware_interface::ControllerInfo> info_list;
+  {
+    std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+    for (const ControllerSpec& spec : controllers_)
+    {
+      controller_interface::ControllerBase* c = spec.c.get();
+      bool in_stop_list = std::find(stop_request_.begin(), stop_request_.end(), c) != stop_request_.end();
+      bool in_start_list = std::find(start_request_.begin(), start_request_.end(), c) != start_request_.end();
+      const bool is_running = c->isRunning();
+
+      if (!is_running && in_stop_list)
+      {
+        if (strict)
+        {
+          ROS_ERROR_STREAM("Could not stop controller '" << spec.info.name << "' since it is not running");
+          clearSwitchRequest();
+          return false;
+        }
+        in_stop_list = false;
+        stop_request_.erase(std::remove(stop_request_.begin(), stop_request_.end(), c), stop_request_.end());
+      }
+
+      if (is_running && !in_stop_list && in_start_list)
+      {
+        if (strict)
+        {
+          ROS_ERROR_STREAM("Controller '" << spec.info.name << "' is already running");
+          clearSwitchRequest();
+          return false;
+        }
+        in_start_list = false;
+        start_request_.erase(std::remove(start_request_.begin(), start_request_.end(), c), start_request_.end());
+      }
+
+      if (is_running && in_stop_list && !in_start_list)
+        switch_stop_list_.push_back(spec.info);
+      else if (!is_running && !in_stop_list && in_start_list)
+        switch_start_list_.push_back(spec.info);
+
+      bool add_to_list = is_running;
+      if (in_stop_list)
+        add_to_list = false;
+      if (in_start_list)
+        add_to_list = true;
+      if (add_to_list)
+        info_list.push_back(spec.info);
+    }
+  }
+
+  if (robot_hw_->checkForConflict(info_list))
+  {
+    ROS_ERROR("Could not switch controllers, due to resource conflict");
+    clearSwitchRequest();
+    return false;
+  }
+
+  if (!robot_hw_->prepareSwitch(switch_start_list_, switch_stop_list_))
+  {
+    ROS_ERROR("Could not switch controllers. The hardware interface combination for the requested controllers is "
+              "unfeasible.");
+    clearSwitchRequest();
+    return false;
+  }
+
+  if (start_request_.empty() && stop_request_.empty())
+  {
+    ROS_DEBUG("Nothing to switch");
+    return true;
+  }
+
+  std::unique_lock<std::mutex> switch_guard(switch_lock_);
+  switch_params_ = SwitchParams();
+  switch_params_.strictness = strictness;
+  switch_params_.start_asap = start_asap;
+  switch_params_.init_time = ros::Time::now();
+  switch_params_.timeout = timeout;
+  switch_params_.do_switch = true;
+  switch_pending_ = true;
+
+  // update() performs the switch: wait for it, but never forever.
+  ROS_DEBUG("Request atomic controller switch from realtime loop");
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::duration<double>(switch_wait_timeout_ + std::max(0.0, timeout));
+  while (switch_params_.do_switch)
+  {
+    if (!ros::ok())
+      break;
+    if (std::chrono::steady_clock::now() >= deadline)
+      break;
+    switch_done_.wait_for(switch_guard, std::chrono::milliseconds(10));
+  }
+  if (switch_params_.do_switch)
+  {
+    const bool started = switch_params_.started;
+    switch_params_.do_switch = false;
+    switch_pending_ = false;
+    clearSwitchRequest();
+    if (!ros::ok())
+      return false;
+    if (started)
+      ROS_ERROR("Controller manager: the controller switch did not complete within %.1f s: the hardware did not "
+                "finish switching. Switch withdrawn.",
+                switch_wait_timeout_ + std::max(0.0, timeout));
+    else
+      ROS_ERROR("Controller manager: update() was not called within %.1f s, so the controller switch was withdrawn. "
+                "Is the control loop running, in another thread than the one serving the controller_manager "
+                "services (e.g. use a ros::AsyncSpinner)?",
+                switch_wait_timeout_ + std::max(0.0, timeout));
+    return false;
+  }
+  clearSwitchRequest();
+  ROS_DEBUG("Successfully switched controllers");
+  return true;
+}
+
+// ------------------------------------------------------------------------------------------ services
+
+bool ControllerManager::reloadControllerLibrariesSrv(controller_manager_msgs::ReloadControllerLibraries::Request& req,
+                                                     controller_manager_msgs::ReloadControllerLibraries::Response& resp)
+{
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+
+  std::vector<std::string> controllers;
+  getControllerNames(controllers);
+  if (!controllers.empty() && !req.force_kill)
+  {
+    ROS_ERROR("Controller manager: Cannot reload controller libraries because there are still %i controllers running",
+              static_cast<int>(controllers.size()));
+    resp.ok = false;
+    return true;
+  }
+
+  if (!controllers.empty())
+  {
+    ROS_INFO("Controller manager: Killing all running controllers");
+    std::vector<std::string> running;
+    for (const std::string& name : controllers)
+    {
+      controller_interface::ControllerBase* c = getControllerByName(name);
+      if (c && c->isRunning())
+        running.push_back(name);
+    }
+    if (!running.empty() && !switchController({}, running, SwitchRequest::BEST_EFFORT))
+    {
+      ROS_ERROR("Controller manager: Cannot reload controller libraries because failed to stop running controllers");
+      resp.ok = false;
+      return true;
+    }
+    for (const std::string& name : controllers)
+    {
+      if (!unloadController(name))
+      {
+        ROS_ERROR("Controller manager: Cannot reload controller libraries because failed to unload controller %s",
+                  name.c_str());
+        resp.ok = false;
+        return true;
+      }
+    }
+  }
+
+  for (ControllerLoaderInterfaceSharedPtr& loader : controller_loaders_)
+  {
+    try
+    {
+      loader->reload();
+      ROS_INFO("Controller manager: reloaded controller libraries for %s", loader->getName().c_str());
+    }
+    catch (const std::exception& e)
+    {
+      ROS_ERROR("Controller manager: reloading controller libraries for %s failed: %s", loader->getName().c_str(),
+                e.what());
+      resp.ok = false;
+      return true;
+    }
+  }
+  resp.ok = true;
+  return true;
+}
+
+bool ControllerManager::listControllerTypesSrv(controller_manager_msgs::ListControllerTypes::Request& /*req*/,
+                                               controller_manager_msgs::ListControllerTypes::Response& resp)
+{
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+  for (ControllerLoaderInterfaceSharedPtr& loader : controller_loaders_)
+  {
+    for (const std::string& type : loader->getDeclaredClasses())
+    {
+      resp.types.push_back(type);
+      resp.base_classes.push_back(loader->getName());
+    }
+  }
+  return true;
+}
+
+static std::string stateName(const controller_interface::ControllerBase& c)
+{
+  typedef controller_interface::ControllerBase::ControllerState State;
+  switch (c.state_)
+  {
+    case State::INITIALIZED:
+      return "initialized";
+    case State::RUNNING:
+      return "running";
+    case State::STOPPED:
+      return "stopped";
+    case State::WAITING:
+      return "waiting";
+    case State::ABORTED:
+      return "aborted";
+    default:
+      return "unknown";
+  }
+}
+
+bool ControllerManager::listControllersSrv(controller_manager_msgs::ListControllers::Request& /*req*/,
+                                           controller_manager_msgs::ListControllers::Response& resp)
+{
+  std::lock_guard<std::recursive_mutex> nonrt(services_lock_);
+  std::lock_guard<std::recursive_mutex> guard(controllers_lock_);
+  resp.controller.resize(controllers_.size());
+  for (size_t i = 0; i < controllers_.size(); ++i)
+  {
+    controller_manager_msgs::ControllerState& cs = resp.controller[i];
+    cs.name = controllers_[i].info.name;
+    cs.type = controllers_[i].info.type;
+    cs.state = stateName(*controllers_[i].c);
+    for (const hardware_interface::InterfaceResources& res : controllers_[i].info.claimed_resources)
+    {
+      controller_manager_msgs::HardwareInterfaceResources iface_res;
+      iface_res.hardware_interface = res.hardware_interface;
+      iface_res.resources.assign(res.resources.begin(), res.resources.end());
+      cs.claimed_resources.push_back(iface_res);
+    }
+  }
+  return true;
+}
+
+bool ControllerManager::loadControllerSrv(controller_manager_msgs::LoadController::Request& req,
+                                          controller_manager_msgs::LoadController::Response& resp)
+{
+  ROS_DEBUG("loading service called for controller %s ", req.name.c_str());
+  resp.ok = loadController(req.name);
+  return true;
+}
+
+bool ControllerManager::unloadControllerSrv(controller_manager_msgs::UnloadController::Request& req,
+                                            controller_manager_msgs::UnloadController::Response& resp)
+{
+  ROS_DEBUG("unloading service called for controller %s ", req.name.c_str());
+  resp.ok = unloadController(req.name);
+  return true;
+}
+
+bool ControllerManager::switchControllerSrv(controller_manager_msgs::SwitchController::Request& req,
+                                            controller_manager_msgs::SwitchController::Response& resp)
+{
+  ROS_DEBUG("switching service called");
+  resp.ok = switchController(req.start_controllers, req.stop_controllers, req.strictness, req.start_asap, req.timeout);
+  return true;
+}
+
+}  // namespace controller_manager
