@@ -63,16 +63,39 @@ void ControllerManager::update(const ros::Time& time, const ros::Duration& perio
   {
     for (ControllerSpec& spec : controllers_)
     {
-      if (spec.c->isRunning())
+      if (!spec.c->isRunning())
+        continue;
+      try
       {
         spec.c->stopRequest(time);
         spec.c->startRequest(time);
+      }
+      catch (const std::exception& e)
+      {
+        abortAfterException(spec, time, "reset", e.what());
+      }
+      catch (...)
+      {
+        abortAfterException(spec, time, "reset", "unknown exception");
       }
     }
   }
 
   for (ControllerSpec& spec : controllers_)
-    spec.c->updateRequest(time, period);
+  {
+    try
+    {
+      spec.c->updateRequest(time, period);
+    }
+    catch (const std::exception& e)
+    {
+      abortAfterException(spec, time, "update", e.what());
+    }
+    catch (...)
+    {
+      abortAfterException(spec, time, "update", "unknown exception");
+    }
+  }
 
   if (switch_pending_.load())
   {
@@ -83,6 +106,7 @@ void ControllerManager::update(const ros::Time& time, const ros::Duration& perio
       {
         robot_hw_->doSwitch(switch_start_list_, switch_stop_list_);
         switch_params_.started = true;
+        switch_params_.init_time = time;  // the timeout runs on the loop's clock
       }
       stopControllers(time);
       if (switch_params_.start_asap)
@@ -98,11 +122,68 @@ void ControllerManager::update(const ros::Time& time, const ros::Duration& perio
   }
 }
 
+void ControllerManager::abortAfterException(ControllerSpec& spec, const ros::Time& time, const char* where,
+                                            const char* what)
+{
+  ROS_ERROR("Controller '%s' (type '%s') threw an exception in %s: %s. The controller is aborted; stop and "
+            "start it again, or unload it.",
+            spec.info.name.c_str(), spec.info.type.c_str(), where, what);
+  try
+  {
+    spec.c->abortRequest(time);
+  }
+  catch (...)
+  {
+    spec.c->state_ = controller_interface::ControllerBase::ControllerState::ABORTED;
+  }
+}
+
+controller_manager::ControllerSpec* ControllerManager::specOf(controller_interface::ControllerBase* c)
+{
+  for (ControllerSpec& spec : controllers_)
+    if (spec.c.get() == c)
+      return &spec;
+  return nullptr;
+}
+
+bool ControllerManager::safeRequest(controller_interface::ControllerBase* c, const ros::Time& time, Request request)
+{
+  try
+  {
+    switch (request)
+    {
+      case Request::START:
+        return c->startRequest(time);
+      case Request::STOP:
+        return c->stopRequest(time);
+      case Request::WAIT:
+        return c->waitRequest(time);
+      case Request::ABORT:
+        return c->abortRequest(time);
+    }
+  }
+  catch (const std::exception& e)
+  {
+    ControllerSpec* spec = specOf(c);
+    if (spec)
+      abortAfterException(*spec, time, request == Request::START ? "starting" : "stopping/waiting/aborting",
+                          e.what());
+  }
+  catch (...)
+  {
+    ControllerSpec* spec = specOf(c);
+    if (spec)
+      abortAfterException(*spec, time, request == Request::START ? "starting" : "stopping/waiting/aborting",
+                          "unknown exception");
+  }
+  return false;
+}
+
 void ControllerManager::stopControllers(const ros::Time& time)
 {
   for (controller_interface::ControllerBase* request : stop_request_)
   {
-    if (request->isRunning() && !request->stopRequest(time))
+    if (request->isRunning() && !safeRequest(request, time, Request::STOP) && !request->isAborted())
       ROS_FATAL("Failed to stop controller in realtime loop. This should never happen.");
   }
 }
@@ -114,7 +195,7 @@ void ControllerManager::startControllers(const ros::Time& time)
   {
     for (controller_interface::ControllerBase* request : start_request_)
     {
-      if (!request->startRequest(time))
+      if (!safeRequest(request, time, Request::START) && !request->isAborted())
         ROS_FATAL("Failed to start controller in realtime loop. This should never happen.");
     }
     switch_params_.do_switch = false;
@@ -123,13 +204,13 @@ void ControllerManager::startControllers(const ros::Time& time)
            (switch_params_.timeout > 0.0 && (time - switch_params_.init_time).toSec() > switch_params_.timeout))
   {
     for (controller_interface::ControllerBase* request : start_request_)
-      request->abortRequest(time);
+      safeRequest(request, time, Request::ABORT);
     switch_params_.do_switch = false;
   }
   else
   {
     for (controller_interface::ControllerBase* request : start_request_)
-      request->waitRequest(time);
+      safeRequest(request, time, Request::WAIT);
   }
 }
 
@@ -145,12 +226,12 @@ void ControllerManager::startControllersAsap(const ros::Time& time)
         continue;
       const hardware_interface::RobotHW::SwitchState result = robot_hw_->switchResult(spec.info);
       if (result == hardware_interface::RobotHW::SwitchState::DONE)
-        request->startRequest(time);
+        safeRequest(request, time, Request::START);
       else if (result == hardware_interface::RobotHW::SwitchState::ERROR ||
                (switch_params_.timeout > 0.0 && (time - switch_params_.init_time).toSec() > switch_params_.timeout))
-        request->abortRequest(time);
+        safeRequest(request, time, Request::ABORT);
       else
-        request->waitRequest(time);
+        safeRequest(request, time, Request::WAIT);
       break;
     }
   }
@@ -450,7 +531,6 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
   switch_params_ = SwitchParams();
   switch_params_.strictness = strictness;
   switch_params_.start_asap = start_asap;
-  switch_params_.init_time = ros::Time::now();
   switch_params_.timeout = timeout;
   switch_params_.do_switch = true;
   switch_pending_ = true;

@@ -98,8 +98,8 @@ void JointGroupPositionController::update(const ros::Time& /*time*/, const ros::
 
     double error = 0.0;
     if (joint_urdf->type == urdf::Joint::REVOLUTE)
-      control_toolbox::angles::shortest_angular_distance_with_limits(
-          current_position, command_position, joint_urdf->limits->lower, joint_urdf->limits->upper, error);
+      error = control_toolbox::angles::revolute_error(current_position, command_position, joint_urdf->limits->lower,
+                                                      joint_urdf->limits->upper);
     else if (joint_urdf->type == urdf::Joint::CONTINUOUS)
       error = control_toolbox::angles::shortest_angular_distance(current_position, command_position);
     else

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <hardware_interface/actuator_command_interface.h>
+#include <hardware_interface/force_torque_sensor_interface.h>
+#include <hardware_interface/posvel_command_interface.h>
 #include <hardware_interface/imu_sensor_interface.h>
 #include <hardware_interface/joint_command_interface.h>
 
@@ -104,6 +106,29 @@ TEST(ImuSensorHandleTest, Data)
   ImuSensorInterface iface;
   iface.registerHandle(h);
   EXPECT_EQ("imu_link", iface.getHandle("imu").getFrameId());
+}
+
+TEST(PosVelJointHandleTest, Commands)
+{
+  double pos = 1.0, vel = 2.0, eff = 3.0, cp = 0.0, cv = 0.0;
+  JointStateHandle js("j", &pos, &vel, &eff);
+  EXPECT_EQ("Cannot create handle 'j'. Command position data pointer is null.",
+            errorOf([&] { PosVelJointHandle(js, nullptr, &cv); }));
+  PosVelJointInterface iface;
+  iface.registerHandle(PosVelJointHandle(js, &cp, &cv));
+  iface.getHandle("j").setCommand(0.5, -0.5);
+  EXPECT_DOUBLE_EQ(0.5, cp);
+  EXPECT_DOUBLE_EQ(-0.5, cv);
+  EXPECT_EQ(1u, iface.getClaims().size());
+}
+
+TEST(ForceTorqueSensorHandleTest, Data)
+{
+  double force[3] = { 1, 2, 3 }, torque[3] = { 4, 5, 6 };
+  ForceTorqueSensorInterface iface;
+  iface.registerHandle(ForceTorqueSensorHandle("ft", "ft_link", force, torque));
+  EXPECT_DOUBLE_EQ(5.0, iface.getHandle("ft").getTorque()[1]);
+  EXPECT_EQ("ft_link", iface.getHandle("ft").getFrameId());
 }
 
 int main(int argc, char** argv)

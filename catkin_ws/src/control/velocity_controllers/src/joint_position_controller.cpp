@@ -130,8 +130,8 @@ void JointPositionController::update(const ros::Time& time, const ros::Duration&
   if (!joint_urdf_ || joint_urdf_->type == urdf::Joint::PRISMATIC)
     error = command_position - current_position;
   else if (joint_urdf_->type == urdf::Joint::REVOLUTE)
-    control_toolbox::angles::shortest_angular_distance_with_limits(
-        current_position, command_position, joint_urdf_->limits->lower, joint_urdf_->limits->upper, error);
+    error = control_toolbox::angles::revolute_error(current_position, command_position, joint_urdf_->limits->lower,
+                                                    joint_urdf_->limits->upper);
   else if (joint_urdf_->type == urdf::Joint::CONTINUOUS)
     error = control_toolbox::angles::shortest_angular_distance(current_position, command_position);
   else

@@ -128,5 +128,46 @@ inline bool shortest_angular_distance_with_limits(double from, double to, double
   return false;
 }
 
+/// Shortest rotation from `from` to `to` for limits spanning 2*pi or more (angles are not
+/// wrapped there): tries the short way, then the other way round, keeping `from + rotation` in
+/// [left_limit, right_limit]. Returns false when neither fits or `from` is outside the limits.
+inline bool shortest_angular_distance_with_large_limits(double from, double to, double left_limit,
+                                                        double right_limit, double& shortest_angle)
+{
+  double delta = shortest_angular_distance(from, to);
+  double delta_other = two_pi_complement(delta);
+  if (std::fabs(delta) > std::fabs(delta_other))
+    std::swap(delta, delta_other);
+
+  if (left_limit > right_limit)
+  {
+    shortest_angle = delta;
+    return false;
+  }
+  const bool from_inside = left_limit <= from && from <= right_limit;
+  for (double candidate : {delta, delta_other})
+  {
+    const double reached = from + candidate;
+    if (left_limit <= reached && reached <= right_limit)
+    {
+      shortest_angle = candidate;
+      return from_inside;
+    }
+  }
+  shortest_angle = delta;
+  return false;
+}
+
+/// Position error of a revolute joint as the ROS 1 position controllers compute it.
+inline double revolute_error(double current, double target, double lower, double upper)
+{
+  double error = 0.0;
+  if (upper - lower >= 2.0 * M_PI)
+    shortest_angular_distance_with_large_limits(current, target, lower, upper, error);
+  else
+    shortest_angular_distance_with_limits(current, target, lower, upper, error);
+  return error;
+}
+
 }  // namespace angles
 }  // namespace control_toolbox

@@ -129,6 +129,17 @@ protected:
   ros::ServiceServer srv_unload_controller_, srv_switch_controller_, srv_reload_libraries_;
 
 private:
+  enum class Request
+  {
+    START,
+    STOP,
+    WAIT,
+    ABORT
+  };
+  /// Realtime: a lifecycle request that cannot crash the loop (a throwing controller is aborted).
+  bool safeRequest(controller_interface::ControllerBase* c, const ros::Time& time, Request request);
+  void abortAfterException(ControllerSpec& spec, const ros::Time& time, const char* where, const char* what);
+  ControllerSpec* specOf(controller_interface::ControllerBase* c);
   void stopControllers(const ros::Time& time);
   void startControllers(const ros::Time& time);
   void startControllersAsap(const ros::Time& time);

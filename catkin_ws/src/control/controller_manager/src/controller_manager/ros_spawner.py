@@ -1,5 +1,6 @@
 """ROS wiring of the spawner and unspawner scripts (the logic is in spawner.py)."""
 import argparse
+import signal
 import threading
 import time
 
@@ -76,61 +77,81 @@ def _wait_for_true(topic, stop_event):
     return True
 
 
+def _install_stop_signals(stop_event):
+    """SIGINT/SIGTERM only set ``stop_event``: the main thread then finishes the service call it
+    is in, tears down, and shuts rospy down itself (rospy's own handlers are disabled)."""
+    def handler(signum, frame):
+        stop_event.set()
+    signal.signal(signal.SIGINT, handler)
+    signal.signal(signal.SIGTERM, handler)
+
+
 def spawner_main(argv):
-    rospy.init_node('spawner', anonymous=True)
+    rospy.init_node('spawner', anonymous=True, disable_signals=True)
+    stop_event = threading.Event()
+    _install_stop_signals(stop_event)
+    rospy.on_shutdown(stop_event.set)
     args = logic.parse_args(rospy.myargv(argv)[1:])
     if args.shutdown_timeout is not None:
         rospy.logwarn("Controller Spawner: --shutdown-timeout is deprecated and ignored")
-    stop_event = threading.Event()
-    rospy.on_shutdown(stop_event.set)
 
     prefix = logic.service_prefix(args.namespace)
     services = RosServices(prefix)
-    if not services.wait(args.timeout, stop_event):
-        if not rospy.is_shutdown():
-            rospy.logwarn("Controller Spawner couldn't find the expected controller_manager ROS interface.")
-        return 0
-    if args.wait_for and not _wait_for_true(args.wait_for, stop_event):
-        return 0
-
-    param_ns = args.namespace or rospy.get_namespace()
     try:
-        names = logic.expand_controllers(
-            args.controllers, lambda key, value: rospy.set_param(param_ns.rstrip('/') + '/' + key, value))
-    except logic.SpawnerError as exc:
-        rospy.logerr("Controller Spawner: %s" % exc)
-        return 1
+        if not services.wait(args.timeout, stop_event):
+            if not stop_event.is_set() and not rospy.is_shutdown():
+                rospy.logwarn("Controller Spawner couldn't find the expected controller_manager ROS interface.")
+            return 0
+        if args.wait_for and not _wait_for_true(args.wait_for, stop_event):
+            return 0
 
-    spawner = logic.Spawner(services, RosLog, autostart=not args.stopped)
-    rospy.on_shutdown(spawner.teardown)   # runs before rospy closes: service calls still work
-    spawner.load_all(names)
-    if rospy.is_shutdown():
+        param_ns = args.namespace or rospy.get_namespace()
+        try:
+            names = logic.expand_controllers(
+                args.controllers, lambda key, value: rospy.set_param(param_ns.rstrip('/') + '/' + key, value))
+        except logic.SpawnerError as exc:
+            rospy.logerr("Controller Spawner: %s" % exc)
+            return 1
+
+        spawner = logic.Spawner(services, RosLog, autostart=not args.stopped)
+        # rosnode kill / master shutdown: tear down from rospy's pre-shutdown hook (services still work)
+        rospy.on_shutdown(spawner.teardown)
+        spawner.load_all(names, stop_event.is_set)
+        if not stop_event.is_set():
+            spawner.start_all()
+        while not stop_event.wait(0.2):
+            pass
+        spawner.teardown()
         return 0
-    spawner.start_all()
-    rospy.spin()
-    return 0
+    finally:
+        rospy.signal_shutdown('spawner done')
 
 
 def unspawner_main(argv):
     """Stop the given controllers now, start them again when this node shuts down."""
-    rospy.init_node('unspawner', anonymous=True)
+    rospy.init_node('unspawner', anonymous=True, disable_signals=True)
+    stop_event = threading.Event()
+    _install_stop_signals(stop_event)
+    rospy.on_shutdown(stop_event.set)
     p = argparse.ArgumentParser(prog='unspawner', description='stops controllers while it runs')
     p.add_argument('controllers', metavar='controller', nargs='+', help='controllers to stop')
     p.add_argument('--namespace', metavar='ns', help='namespace of the controller_manager services')
     args = p.parse_args(rospy.myargv(argv)[1:])
     services = RosServices(logic.service_prefix(args.namespace))
-    stop_event = threading.Event()
     if not services.wait(0.0, stop_event):
+        rospy.signal_shutdown('unspawner done')
         return 0
     stopped = []
 
     def restart():
         if stopped:
+            names = list(stopped)
+            del stopped[:]
             try:
-                if services.switch(stopped, [], logic.STRICT):
-                    rospy.loginfo("Restarted controllers: %s" % ', '.join(stopped))
+                if services.switch(names, [], logic.STRICT):
+                    rospy.loginfo("Restarted controllers: %s" % ', '.join(names))
                 else:
-                    rospy.logerr("Failed to restart controllers: %s" % ', '.join(stopped))
+                    rospy.logerr("Failed to restart controllers: %s" % ', '.join(names))
             except Exception as exc:
                 rospy.logwarn("Unspawner error while restarting controllers: %s" % exc)
 
@@ -140,6 +161,9 @@ def unspawner_main(argv):
         rospy.loginfo("Stopped controllers: %s" % ', '.join(args.controllers))
     else:
         rospy.logerr("Failed to stop controllers: %s" % ', '.join(args.controllers))
-    rospy.spin()
+    while not stop_event.wait(0.2):
+        pass
+    restart()
+    rospy.signal_shutdown('unspawner done')
     return 0
 

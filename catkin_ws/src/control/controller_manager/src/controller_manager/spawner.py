@@ -6,6 +6,7 @@ unload: each returns the service's ``ok``), so its behaviour is testable without
 """
 import argparse
 import os
+import threading
 
 import yaml
 
@@ -82,9 +83,12 @@ class Spawner(object):
         self.loaded = []
         self.started = False
         self._torn_down = False
+        self._lock = threading.Lock()
 
-    def load_all(self, names):
+    def load_all(self, names, stop_requested=lambda: False):
         for name in names:
+            if stop_requested():
+                break
             self.log.info("Loading controller: " + name)
             if self.services.load(name):
                 self.loaded.append(name)
@@ -105,10 +109,14 @@ class Spawner(object):
 
     def teardown(self):
         """Stop the loaded controllers and unload them in reverse order (once)."""
-        if self._torn_down or not self.loaded:
+        with self._lock:
+            if self._torn_down:
+                return
             self._torn_down = True
-            return
-        self._torn_down = True
+            if self.loaded:
+                self._teardown()
+
+    def _teardown(self):
         self.log.info("Shutting down spawner. Stopping and unloading controllers...")
         try:
             self.log.info("Stopping all controllers...")
