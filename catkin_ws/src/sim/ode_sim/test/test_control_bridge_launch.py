@@ -1,7 +1,8 @@
 """The ros_control bridge as a user meets it: `roslaunch gazebo_ros empty_world.launch
 lockstep:=true`, `rosrun gazebo_ros spawn_model -urdf -file arm.urdf -model arm`, a URDF with
 libgazebo_ros_control.so and two transmissions, and a controller-side client that speaks only
-the documented topics (control_client.py): the arm holds its position, the wheel tracks its
+the documented topics (control_client.py, in place of gazebo_ros_control_node:
+<controllerNode>false</controllerNode>): the arm holds its position, the wheel tracks its
 velocity, and with lockstep every control period of sim time is answered."""
 import json
 import os
@@ -35,7 +36,7 @@ URDF = """<?xml version="1.0"?>
     <joint name="wheel_joint"><hardwareInterface>hardware_interface/VelocityJointInterface</hardwareInterface></joint>
     <actuator name="wheel_motor"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
   <gazebo><plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">
-    <controlPeriod>0.01</controlPeriod></plugin></gazebo>
+    <controlPeriod>0.01</controlPeriod><controllerNode>false</controllerNode></plugin></gazebo>
 </robot>
 """
 

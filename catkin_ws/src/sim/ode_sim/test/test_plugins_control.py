@@ -279,11 +279,46 @@ def test_contract_over_real_topics_in_lockstep(roscore, tmp_path):
     assert 'OK hold' in out, out[-3000:]
 
 
+def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
+    """With ROS up the plugin starts gazebo_ros_control_node in NS (here a stand-in script
+    that records its arguments) and stops it on shutdown; controllerNode=false starts none."""
+    from ode_sim.plugins import control
+    import roslib.packages
+    args = tmp_path / 'args'
+    fake = tmp_path / 'gazebo_ros_control_node'
+    fake.write_text('#!/bin/sh\necho "$@" > %s\nexec sleep 60\n' % args)
+    fake.chmod(0o755)
+    monkeypatch.setattr(control, 'ros_up', lambda: True)
+    monkeypatch.setattr(control.GazeboRosControl, '_load_ros_params', lambda self: None)
+    monkeypatch.setattr(control, 'publisher', lambda *a, **k: None)
+    monkeypatch.setattr(control, 'subscriber', lambda *a, **k: None)
+    monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [str(fake)])
+    _, _, plug = bridge({'hinge': POS}, eStopTopic='estop')
+    proc = plug.node_proc
+    assert proc is not None and proc.poll() is None
+    deadline = time.monotonic() + 10
+    while not args.exists() or not args.read_text().strip():
+        assert time.monotonic() < deadline, 'the node was not started'
+        time.sleep(0.02)
+    assert args.read_text().split() == ['__ns:=/rig', '__name:=gazebo_ros_control', '--parent-pid',
+                                        str(os.getpid()), '--estop-topic', 'estop']
+    plug.shutdown()
+    assert proc.poll() is not None and plug.node_proc is None
+    _, _, plug = bridge({'hinge': POS}, controllerNode='false')
+    assert plug.node_proc is None
+    monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [])
+    _, _, plug = bridge({'hinge': POS})
+    assert plug.node_proc is None       # not built: an ERROR, the bridge still loads
+    with pytest.raises(ModelError, match='controllerNode'):
+        bridge({'hinge': POS}, controllerNode='maybe')
+
+
 def integration():
     """A client like the coming RobotHW: reads NS/ode_sim/joint_states, answers each state with
     a position command on NS/ode_sim/joint_commands (same stamp). The sim runs here too."""
     rospy.init_node('control_bridge_check')
-    pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.005)
+    pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.005,
+                        controllerNode='false')      # this script is the controller side
     joints = rospy.get_param('/rig/ode_sim/joints')
     assert joints[0]['name'] == 'hinge' and joints[0]['interface'] == POS, joints
     assert rospy.get_param('/rig/ode_sim/control_period') == 0.005

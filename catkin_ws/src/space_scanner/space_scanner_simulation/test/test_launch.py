@@ -1,5 +1,5 @@
 """The diploma's simulation.launch headless on a private roscore (gui:=false rviz:=false
-teleop:=false): the robot dropped from 0.85 m lands on its wheels in the office, the RPLidar
+teleop:=false drive:=skid_steer; drive:=ros_control, the default, is drive.test): the robot dropped from 0.85 m lands on its wheels in the office, the RPLidar
 scan arrives, the skid-steer drive moves it on /cmd_vel."""
 import math
 
@@ -11,7 +11,8 @@ from my_robot_simulation import sim_testing as T
 def test_simulation_launch(roscore, tmp_path):
     env = T.ros_env(roscore)
     p = T.roslaunch('space_scanner_simulation', 'simulation.launch',
-                    ['gui:=false', 'rviz:=false', 'teleop:=false'], env, tmp_path / 'launch.log')
+                    ['gui:=false', 'rviz:=false', 'teleop:=false', 'drive:=skid_steer'], env,
+                    tmp_path / 'launch.log')
     try:
         T.probe(['model', 'robot'], env, proc=p)
         scan = T.probe(['topic', '/scan', '--skip', 2], env, proc=p)      # after the landing

@@ -17,7 +17,30 @@ def model():
                             root='base_footprint')
 
 
-def test_skid_steer(model):
+@pytest.fixture(scope='module')
+def skid_model():
+    """drive:=skid_steer, the comparison variant."""
+    urdf = mc.expand_xacro(os.path.join(PKG, 'urdf', 'chassi_bot.urdf.xacro'), args=['drive:=skid_steer'])
+    assert mc.problems(urdf, root_frames=('base_footprint',), resolve=mc.rospack_resolver()) == []
+    return mc.parse(urdf)
+
+
+def test_ros_control_by_default(model):
+    ps = [p for g in model.gazebo for p in g.iter('plugin')]
+    names = [p.get('filename') for p in ps]
+    assert 'libgazebo_ros_control.so' in names and 'libgazebo_ros_skid_steer_drive.so' not in names
+    ctl = ps[names.index('libgazebo_ros_control.so')]
+    assert ctl.findtext('robotNamespace') == '/'
+
+
+def test_drive_arg_rejects_unknown():
+    with pytest.raises(Exception):
+        mc.expand_xacro(os.path.join(PKG, 'urdf', 'chassi_bot.urdf.xacro'), args=['drive:=tank'])
+
+
+def test_skid_steer(skid_model):
+    model = skid_model
+    assert 'libgazebo_ros_control.so' not in [p.get('filename') for g in model.gazebo for p in g.iter('plugin')]
     ps = [p for g in model.gazebo for p in g.iter('plugin')
           if p.get('filename') == 'libgazebo_ros_skid_steer_drive.so']
     assert len(ps) == 1

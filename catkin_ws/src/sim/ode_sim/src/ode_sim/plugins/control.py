@@ -21,11 +21,26 @@ the contract documented in doc/ros_control_bridge.md:
   joint_commands; after `NS/ode_sim/lockstep_timeout` (1.0 s) it warns once and steps on until
   commands flow again.
 
+- the controller manager: when ROS is up the plugin starts gazebo_ros_control's
+  `gazebo_ros_control_node` in NS as a child process (the C++ DefaultRobotHWSim +
+  controller_manager, the controller side of the contract), as gzserver loads
+  gazebo_ros_control; it is stopped with the plugin (model deleted, simulator exits) and
+  exits by itself if the simulator dies. `<controllerNode>false</controllerNode>` (an ode_sim
+  extension) starts none: a RobotHW of one's own speaks the topics.
+  `<controllerNode>inprocess</controllerNode>` runs the same controller manager inside this
+  process (gazebo_ros_control's libgazebo_ros_control_inprocess.so through ctypes): every
+  control period the plugin hands it the joint states and takes the commands back directly,
+  no topics and no lockstep waiting (as gazebo_ros_control in gzserver; much faster).
+
 Tags as gazebo_ros_control (noetic): robotNamespace (model name), robotParam
 (robot_description; the transmissions come with the model here), robotSimType (only
-gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none).
+gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none);
+ode_sim's controllerNode (true).
 """
 import math
+import os
+import signal
+import subprocess
 import threading
 import time
 
@@ -41,6 +56,12 @@ STATE = 'JointStateInterface'
 COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
 DEFAULT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
 DEFAULT_LOCKSTEP_TIMEOUT = 1.0
+NODE_PACKAGE = 'gazebo_ros_control'
+NODE_TYPE = 'gazebo_ros_control_node'
+NODE_STOP_TIMEOUT = 5.0             # wall seconds between SIGINT and SIGKILL
+INPROCESS_LIBRARY = 'libgazebo_ros_control_inprocess.so'
+NODE_MODES = {'true': 'process', '1': 'process', 'process': 'process', 'inprocess': 'inprocess',
+              'false': None, '0': None}
 
 
 def bare_interface(name):
@@ -154,6 +175,14 @@ class GazeboRosControl(Plugin):
         else:
             self.control_period = dt
         self.estop_topic = self.param('eStopTopic', '', warn=False).strip()
+        mode = self.param('controllerNode', 'true', warn=False).strip().lower()
+        if mode not in NODE_MODES:
+            raise self.error("<controllerNode> must be true (a child process), inprocess or false, "
+                             "got %r" % mode)
+        self.node_mode = NODE_MODES[mode]
+        self.start_node = self.node_mode is not None
+        self.node_proc = None
+        self._inproc = None
         self.joints = self._joints_from_transmissions()
         self.by_name = {j.name: j for j in self.joints}
         self.lockstep_timeout = DEFAULT_LOCKSTEP_TIMEOUT
@@ -176,7 +205,8 @@ class GazeboRosControl(Plugin):
         self.state_topic = self.topic('ode_sim/joint_states')
         self.command_topic = self.topic('ode_sim/joint_commands')
         self.state_pub = publisher(self.state_topic, JointState, queue_size=10)
-        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10)
+        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10,
+                                  tcp_nodelay=True)
         self.estop_sub = None
         if self.estop_topic:
             from std_msgs.msg import Bool
@@ -187,6 +217,10 @@ class GazeboRosControl(Plugin):
             rospy.logwarn("gazebo_ros_control: model '%s' has no <transmission>: nothing to "
                           "control" % model.name)
         rospy.loginfo("Starting gazebo_ros_control plugin in namespace: %s" % (self.ns or '/'))
+        if ros_up() and self.node_mode == 'process':
+            self._start_controller_node()
+        elif ros_up() and self.node_mode == 'inprocess':
+            self._start_inprocess()
 
     # ------------------------------------------------------------------ setup
     def _joints_from_transmissions(self):
@@ -255,6 +289,83 @@ class GazeboRosControl(Plugin):
             else:
                 rospy.logerr("No p gain specified for pid.  Namespace: %s" % ns)
 
+    def _start_controller_node(self):
+        """gazebo_ros_control_node in NS: DefaultRobotHWSim + controller_manager."""
+        from roslib.packages import find_node
+        try:
+            found = find_node(NODE_PACKAGE, NODE_TYPE)
+        except Exception:           # package unknown to rospack
+            found = []
+        if not found:
+            rospy.logerr("gazebo_ros_control: %s/%s not found: no controller manager runs in "
+                         "namespace %s (build the workspace: catkin_make, then source "
+                         "devel/setup.bash; or set <controllerNode>false</controllerNode> to "
+                         "run a RobotHW of your own)" % (NODE_PACKAGE, NODE_TYPE, self.ns or '/'))
+            return
+        ns = '/' + self.ns.strip('/')
+        cmd = [found[0], '__ns:=' + ns, '__name:=gazebo_ros_control',
+               '--parent-pid', str(os.getpid())]
+        if self.estop_topic:
+            cmd += ['--estop-topic', self.estop_topic]
+        self.node_proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL)
+        rospy.loginfo("gazebo_ros_control: started the controller manager node in %s (pid %d)"
+                      % (ns, self.node_proc.pid))
+
+    def _start_inprocess(self):
+        """The controller manager inside this process (see the module doc)."""
+        import ctypes
+        try:
+            lib = ctypes.CDLL(INPROCESS_LIBRARY)
+        except OSError as e:
+            raise self.error("<controllerNode>inprocess</controllerNode>: cannot load %s (%s): build "
+                             "the workspace and source devel/setup.bash" % (INPROCESS_LIBRARY, e))
+        lib.grc_create.restype = ctypes.c_void_p
+        lib.grc_create.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int]
+        lib.grc_size.argtypes = [ctypes.c_void_p]
+        arr = ctypes.POINTER(ctypes.c_double)
+        lib.grc_update.argtypes = [ctypes.c_void_p, ctypes.c_longlong, arr, arr, arr, arr]
+        lib.grc_update.restype = None
+        lib.grc_destroy.argtypes = [ctypes.c_void_p]
+        err = ctypes.create_string_buffer(512)
+        handle = lib.grc_create(('/' + self.ns.strip('/')).encode(), self.estop_topic.encode(), err, 512)
+        if not handle:
+            raise self.error('the in-process controller manager failed: %s' % err.value.decode())
+        n = len(self.joints)
+        if lib.grc_size(handle) != n:
+            lib.grc_destroy(handle)
+            raise self.error('the in-process controller manager sees %d joints, the plugin %d'
+                             % (lib.grc_size(handle), n))
+        buf = ctypes.c_double * n
+        self._inproc = (lib, handle, buf(), buf(), buf(), buf())
+
+    def _inprocess_update(self, stamp):
+        lib, handle, pos, vel, eff, cmd = self._inproc
+        for k, j in enumerate(self.joints):
+            pos[k] = j.position()
+            vel[k] = j.joint.velocity()
+            eff[k] = j.joint.effort()
+        lib.grc_update(handle, stamp.to_nsec(), pos, vel, eff, cmd)
+        for k, j in enumerate(self.joints):
+            v = cmd[k]
+            if v == v and j.interface != STATE:     # NaN: no command yet
+                j.command = v
+
+    def _stop_inprocess(self):
+        inproc, self._inproc = self._inproc, None
+        if inproc is not None:
+            inproc[0].grc_destroy(inproc[1])
+
+    def _stop_controller_node(self):
+        proc, self.node_proc = self.node_proc, None
+        if proc is None or proc.poll() is not None:
+            return
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(NODE_STOP_TIMEOUT)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
     def set_pid_gains(self, joint, p, i=0.0, d=0.0, i_clamp=0.0, i_clamp_min=None,
                       i_clamp_max=None):
         """Drive a velocity/position joint through a PID on effort (None removes it)."""
@@ -314,6 +425,13 @@ class GazeboRosControl(Plugin):
         if last is None or t < last or t - last >= self.control_period - 1e-9:
             self._last_period = t
             stamp = self.ctx.now()
+            if self._inproc is not None:
+                # synchronous by construction: the commands of t_k come back from the call
+                if self.state_pub.get_num_connections() > 0:
+                    self.state_pub.publish(self.state_msg(stamp))
+                self._inprocess_update(stamp)
+                self.apply(self.ctx.physics.dt)
+                return
             with self._cond:
                 self._state_stamp = stamp.to_nsec()
             self.state_pub.publish(self.state_msg(stamp))
@@ -399,6 +517,8 @@ class GazeboRosControl(Plugin):
         with self._cond:
             self._closing = True
             self._cond.notify_all()
+        self._stop_controller_node()
+        self._stop_inprocess()
         close(self.state_pub, self.cmd_sub, self.estop_sub)
 
 

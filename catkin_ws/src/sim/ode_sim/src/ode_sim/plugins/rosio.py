@@ -41,9 +41,10 @@ def publisher(name, data_class, queue_size=1, latch=False):
     return MemoryPublisher(name, data_class, queue_size, latch)
 
 
-def subscriber(name, data_class, callback, queue_size=1):
+def subscriber(name, data_class, callback, queue_size=1, tcp_nodelay=False):
     if ros_up():
-        return rospy.Subscriber(name, data_class, callback, queue_size=queue_size)
+        return rospy.Subscriber(name, data_class, callback, queue_size=queue_size,
+                                tcp_nodelay=tcp_nodelay)
     return None
 
 
