@@ -13,12 +13,12 @@ import time
 
 import course_testing
 
-from grading import lab1, lab2, lab3
+from grading import lab1, lab2, lab3, lab4
 from grading.common import (LABS_DIR, Criterion, GradeError, parse_isu, read_report, reason)
 from grading.report import format_report, write_junit
 from grading.workspace import StepFailed, build_overlay, course_env, locate, run_group
 
-LAB_MODULES = {'lab1': lab1, 'lab2': lab2, 'lab3': lab3}
+LAB_MODULES = {'lab1': lab1, 'lab2': lab2, 'lab3': lab3, 'lab4': lab4}
 BUILD_TIMEOUT = 300.0
 
 
@@ -98,7 +98,7 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(prog='labs/grade', description=__doc__.splitlines()[0])
-    ap.add_argument('lab', help='lab1, lab2 or lab3')
+    ap.add_argument('lab', help='lab1, lab2, lab3 or lab4')
     ap.add_argument('--isu', required=True, help='your ISU id (digits); its last digit is the variant')
     ap.add_argument('--repo', default='.', help='folder with your lab repository (default: .)')
     ap.add_argument('--junit', help='JUnit XML output (default: ./grade-LAB-ISU.xml)')

@@ -1,0 +1,14 @@
+#!/usr/bin/python3
+"""rostest checker of lab 4: run lab4.launch headless, observe scene, robot, sensors,
+controllers and motion (sim time), report."""
+from grading import lab4
+from grading.checker import run_checker
+from grading.observe import Lab4Observer
+
+
+def observe(isu, pkg_dir, workdir):
+    return Lab4Observer(isu, pkg_dir, workdir).run()
+
+
+if __name__ == '__main__':
+    run_checker('lab4', lab4, observe)
