@@ -1,0 +1,261 @@
+// PID position controller shared by effort_controllers::JointPositionController (output: joint
+// effort) and velocity_controllers::JointPositionController (output: joint velocity), which in
+// ros_controllers 0.21 are two copies of the same code. Header-only template: the plugins are
+// the subclasses in those packages (they also need angles, control_msgs, control_toolbox and
+// urdf, which their CMakeLists find).
+#pragma once
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include <angles/angles.h>
+#include <control_msgs/JointControllerState.h>
+#include <control_toolbox/pid.h>
+#include <controller_interface/controller.h>
+#include <hardware_interface/hardware_interface_exception.h>
+#include <hardware_interface/joint_command_interface.h>
+#include <realtime_tools/realtime_buffer.h>
+#include <realtime_tools/realtime_publisher.h>
+#include <ros/console.h>
+#include <ros/node_handle.h>
+#include <std_msgs/Float64.h>
+#include <urdf/model.h>
+
+namespace forward_command_controller
+{
+
+/**
+ * PID from a position set point to the command of one joint of HardwareInterface
+ * (EffortJointInterface or VelocityJointInterface).
+ *
+ * Parameters (controller namespace): `joint` (required), `pid/{p,i,d,i_clamp,...}` (p required),
+ * and `robot_description` found upward from the namespace (joint type and limits).
+ * Subscribes `command` (std_msgs/Float64, position [rad or m]); publishes `state`
+ * (control_msgs/JointControllerState) every 10th update.
+ * Error: shortest angle within the limits for revolute joints, shortest angle for continuous
+ * joints, difference for prismatic; set points are clamped to the URDF limits.
+ */
+template <class HardwareInterface>
+class JointPositionPidController : public controller_interface::Controller<HardwareInterface>
+{
+public:
+  /// Set point; the velocity set point is used (as the PID's error derivative) when has_velocity_.
+  struct Commands
+  {
+    double position_ = 0.0;
+    double velocity_ = 0.0;
+    bool has_velocity_ = false;
+  };
+
+  JointPositionPidController() = default;
+  ~JointPositionPidController() override { sub_command_.shutdown(); }
+
+  bool init(HardwareInterface* robot, const std::string& joint_name, const control_toolbox::Pid& pid);
+  bool init(HardwareInterface* robot, ros::NodeHandle& n) override;
+
+  /// Position set point [rad or m] (non-realtime).
+  void setCommand(double pos_command);
+  /// Position [rad or m] and velocity [rad/s or m/s] set points (non-realtime).
+  void setCommand(double pos_command, double vel_command);
+
+  void starting(const ros::Time& time) override;
+  void update(const ros::Time& time, const ros::Duration& period) override;
+
+  void getGains(double& p, double& i, double& d, double& i_max, double& i_min)
+  {
+    bool dummy = false;
+    pid_controller_.getGains(p, i, d, i_max, i_min, dummy);
+  }
+  void getGains(double& p, double& i, double& d, double& i_max, double& i_min, bool& antiwindup)
+  {
+    pid_controller_.getGains(p, i, d, i_max, i_min, antiwindup);
+  }
+  void setGains(const double& p, const double& i, const double& d, const double& i_max, const double& i_min,
+                const bool& antiwindup = false)
+  {
+    pid_controller_.setGains(p, i, d, i_max, i_min, antiwindup);
+  }
+  void printDebug() { pid_controller_.printValues(); }
+  std::string getJointName() { return joint_.getName(); }
+  double getPosition() { return joint_.getPosition(); }
+
+  hardware_interface::JointHandle joint_;
+  urdf::JointConstSharedPtr joint_urdf_;
+  realtime_tools::RealtimeBuffer<Commands> command_;
+  Commands command_struct_;
+
+private:
+  int loop_count_ = 0;
+  control_toolbox::Pid pid_controller_;
+  std::unique_ptr<realtime_tools::RealtimePublisher<control_msgs::JointControllerState>> controller_state_publisher_;
+  ros::Subscriber sub_command_;
+  std::string namespace_;
+
+  void setCommandCB(const std_msgs::Float64ConstPtr& msg);
+  void enforceJointLimits(double& command);
+};
+
+template <class HardwareInterface>
+bool JointPositionPidController<HardwareInterface>::init(HardwareInterface* robot, ros::NodeHandle& n)
+{
+  namespace_ = n.getNamespace();
+  std::string joint_name;
+  if (!n.getParam("joint", joint_name))
+  {
+    ROS_ERROR("No joint given (namespace: %s)", n.getNamespace().c_str());
+    return false;
+  }
+
+  if (!pid_controller_.init(ros::NodeHandle(n, "pid")))
+    return false;
+
+  controller_state_publisher_ =
+      std::make_unique<realtime_tools::RealtimePublisher<control_msgs::JointControllerState>>(n, "state", 1);
+  sub_command_ = n.subscribe<std_msgs::Float64>("command", 1, &JointPositionPidController::setCommandCB, this);
+
+  try
+  {
+    joint_ = robot->getHandle(joint_name);
+  }
+  catch (const hardware_interface::HardwareInterfaceException& e)
+  {
+    ROS_ERROR("Could not get joint '%s' (namespace: %s): %s", joint_name.c_str(), n.getNamespace().c_str(), e.what());
+    return false;
+  }
+
+  urdf::Model urdf;
+  if (!urdf.initParamWithNodeHandle("robot_description", n))
+  {
+    ROS_ERROR("Failed to parse urdf file");
+    return false;
+  }
+  joint_urdf_ = urdf.getJoint(joint_name);
+  if (!joint_urdf_)
+  {
+    ROS_ERROR("Could not find joint '%s' in urdf", joint_name.c_str());
+    return false;
+  }
+  if ((joint_urdf_->type == urdf::Joint::REVOLUTE || joint_urdf_->type == urdf::Joint::PRISMATIC) &&
+      !joint_urdf_->limits)
+  {
+    ROS_ERROR("Joint '%s' has no <limit> in the urdf (namespace: %s)", joint_name.c_str(), n.getNamespace().c_str());
+    return false;
+  }
+  return true;
+}
+
+template <class HardwareInterface>
+bool JointPositionPidController<HardwareInterface>::init(HardwareInterface* robot, const std::string& joint_name,
+                                                         const control_toolbox::Pid& pid)
+{
+  pid_controller_ = pid;
+  joint_ = robot->getHandle(joint_name);
+  return true;
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::setCommand(double pos_command)
+{
+  command_struct_.position_ = pos_command;
+  command_struct_.has_velocity_ = false;
+  command_.writeFromNonRT(command_struct_);
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::setCommand(double pos_command, double vel_command)
+{
+  command_struct_.position_ = pos_command;
+  command_struct_.velocity_ = vel_command;
+  command_struct_.has_velocity_ = true;
+  command_.writeFromNonRT(command_struct_);
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::starting(const ros::Time& /*time*/)
+{
+  double pos_command = joint_.getPosition();
+  enforceJointLimits(pos_command);
+  command_struct_.position_ = pos_command;
+  command_struct_.has_velocity_ = false;
+  command_.initRT(command_struct_);
+  pid_controller_.reset();
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::update(const ros::Time& time, const ros::Duration& period)
+{
+  command_struct_ = *command_.readFromRT();
+  double command_position = command_struct_.position_;
+  const double current_position = joint_.getPosition();
+
+  enforceJointLimits(command_position);
+
+  double error = 0.0;
+  if (!joint_urdf_ || joint_urdf_->type == urdf::Joint::PRISMATIC)
+    error = command_position - current_position;
+  else if (joint_urdf_->type == urdf::Joint::REVOLUTE)
+    angles::shortest_angular_distance_with_large_limits(current_position, command_position, joint_urdf_->limits->lower,
+                                                        joint_urdf_->limits->upper, error);
+  else if (joint_urdf_->type == urdf::Joint::CONTINUOUS)
+    error = angles::shortest_angular_distance(current_position, command_position);
+  else
+    error = command_position - current_position;
+
+  // effort or velocity, depending on HardwareInterface
+  double commanded = 0.0;
+  if (command_struct_.has_velocity_)
+  {
+    const double vel_error = command_struct_.velocity_ - joint_.getVelocity();
+    commanded = pid_controller_.computeCommand(error, vel_error, period);
+  }
+  else
+  {
+    commanded = pid_controller_.computeCommand(error, period);
+  }
+  joint_.setCommand(commanded);
+
+  if (loop_count_ % 10 == 0 && controller_state_publisher_ && controller_state_publisher_->trylock())
+  {
+    control_msgs::JointControllerState& msg = controller_state_publisher_->msg_;
+    msg.header.stamp = time;
+    msg.set_point = command_position;
+    msg.process_value = current_position;
+    msg.process_value_dot = joint_.getVelocity();
+    msg.error = error;
+    msg.time_step = period.toSec();
+    msg.command = commanded;
+    double dummy = 0.0;
+    bool antiwindup = false;
+    getGains(msg.p, msg.i, msg.d, msg.i_clamp, dummy, antiwindup);
+    msg.antiwindup = antiwindup;
+    controller_state_publisher_->unlockAndPublish();
+  }
+  ++loop_count_;
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::setCommandCB(const std_msgs::Float64ConstPtr& msg)
+{
+  if (!std::isfinite(msg->data))
+  {
+    ROS_WARN_THROTTLE(1.0, "%s: ignoring a non-finite position command (%f)", namespace_.c_str(), msg->data);
+    return;
+  }
+  setCommand(msg->data);
+}
+
+template <class HardwareInterface>
+void JointPositionPidController<HardwareInterface>::enforceJointLimits(double& command)
+{
+  if (joint_urdf_ && joint_urdf_->limits &&
+      (joint_urdf_->type == urdf::Joint::REVOLUTE || joint_urdf_->type == urdf::Joint::PRISMATIC))
+  {
+    if (command > joint_urdf_->limits->upper)
+      command = joint_urdf_->limits->upper;
+    else if (command < joint_urdf_->limits->lower)
+      command = joint_urdf_->limits->lower;
+  }
+}
+
+}  // namespace forward_command_controller
