@@ -9,7 +9,8 @@ from cm_check_common import BEST_EFFORT, CM, STRICT, Latest, RosoutWatcher
 
 TEST_TYPES = ['controller_manager_tests/EffortTestController', 'controller_manager_tests/VelocityTestController',
               'controller_manager_tests/StateTestController', 'controller_manager_tests/ImuTestController',
-              'controller_manager_tests/MultiTestController']
+              'controller_manager_tests/MultiTestController',
+              'controller_manager_tests/CompatTestController']   # exported with pluginlib/class_list_macros.h
 
 
 class ServicesTest(unittest.TestCase):
@@ -93,6 +94,19 @@ class ServicesTest(unittest.TestCase):
         self.assertFalse(self.cm.switch(start=['velocity_j1'], strictness=BEST_EFFORT))
         self.assertTrue(self.cm.switch(start=['velocity_j1'], stop=['effort_j1']))
         self.assertEqual({'effort_j1': 'stopped', 'velocity_j1': 'running'}, self.cm.states())
+
+    def test_plugin_exported_with_class_list_macros_h(self):
+        # libcontroller_manager_tests_compat includes the ROS 1 header name (package pluginlib_compat)
+        self.assertTrue(self.cm.load('compat'))
+        c = self.cm.controllers()['compat']
+        self.assertEqual('controller_manager_tests/CompatTestController', c.type)
+        self.assertEqual('initialized', c.state)
+        self.assertTrue(self.cm.switch(start=['compat']))
+        self.assertEqual({'compat': 'running'}, self.cm.states())
+        self.assertTrue(self.cm.switch(stop=['compat']))
+        self.assertEqual({'compat': 'stopped'}, self.cm.states())
+        self.assertTrue(self.cm.unload('compat'))
+        self.assertEqual({}, self.cm.states())
 
     def test_reload_libraries(self):
         self.assertTrue(self.cm.load('state'))

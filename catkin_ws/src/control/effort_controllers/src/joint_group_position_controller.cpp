@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <control_toolbox/angles.h>
+#include <angles/angles.h>
 #include <hardware_interface/hardware_interface_exception.h>
 #include <pluginlib/class_list_macros.hpp>
 
@@ -98,10 +98,9 @@ void JointGroupPositionController::update(const ros::Time& /*time*/, const ros::
 
     double error = 0.0;
     if (joint_urdf->type == urdf::Joint::REVOLUTE)
-      error = control_toolbox::angles::revolute_error(current_position, command_position, joint_urdf->limits->lower,
-                                                      joint_urdf->limits->upper);
+      angles::shortest_angular_distance_with_large_limits(current_position, command_position, joint_urdf->limits->lower, joint_urdf->limits->upper, error);
     else if (joint_urdf->type == urdf::Joint::CONTINUOUS)
-      error = control_toolbox::angles::shortest_angular_distance(current_position, command_position);
+      error = angles::shortest_angular_distance(current_position, command_position);
     else
       error = command_position - current_position;
 

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <control_toolbox/angles.h>
+#include <angles/angles.h>
 #include <hardware_interface/hardware_interface_exception.h>
 #include <pluginlib/class_list_macros.hpp>
 
@@ -130,10 +130,9 @@ void JointPositionController::update(const ros::Time& time, const ros::Duration&
   if (!joint_urdf_ || joint_urdf_->type == urdf::Joint::PRISMATIC)
     error = command_position - current_position;
   else if (joint_urdf_->type == urdf::Joint::REVOLUTE)
-    error = control_toolbox::angles::revolute_error(current_position, command_position, joint_urdf_->limits->lower,
-                                                    joint_urdf_->limits->upper);
+    angles::shortest_angular_distance_with_large_limits(current_position, command_position, joint_urdf_->limits->lower, joint_urdf_->limits->upper, error);
   else if (joint_urdf_->type == urdf::Joint::CONTINUOUS)
-    error = control_toolbox::angles::shortest_angular_distance(current_position, command_position);
+    error = angles::shortest_angular_distance(current_position, command_position);
   else
     error = command_position - current_position;
 

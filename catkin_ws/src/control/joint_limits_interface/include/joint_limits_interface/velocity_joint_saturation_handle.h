@@ -1,0 +1,60 @@
+// Re-implementation of ros_control's joint_limits_interface (Noetic 0.20 API) for Debian 12.
+#pragma once
+
+#include <algorithm>
+#include <string>
+
+#include <hardware_interface/joint_command_interface.h>
+#include <ros/duration.h>
+
+#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/joint_limits.h>
+#include <joint_limits_interface/joint_limits_interface_exception.h>
+
+namespace joint_limits_interface
+{
+/**
+ * \brief Saturates the command of a velocity-controlled joint.
+ *
+ * The command is clamped to ±max_velocity and, with acceleration limits, to within
+ * max_acceleration·period of the measured velocity. Requires velocity limits.
+ */
+class VelocityJointSaturationHandle
+{
+public:
+  VelocityJointSaturationHandle() = default;
+
+  VelocityJointSaturationHandle(const hardware_interface::JointHandle& jh, const JointLimits& limits)
+    : jh_(jh), limits_(limits)
+  {
+    if (!limits.has_velocity_limits)
+      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
+                                          "'. It has no velocity limits specification.");
+  }
+
+  std::string getName() const { return jh_.getName(); }
+
+  /// \param period control period (used with acceleration limits)
+  void enforceLimits(const ros::Duration& period)
+  {
+    double vel_low = -limits_.max_velocity;
+    double vel_high = limits_.max_velocity;
+    if (limits_.has_acceleration_limits)
+    {
+      const double vel = jh_.getVelocity();
+      const double dv = limits_.max_acceleration * period.toSec();
+      vel_low = std::max(vel - dv, -limits_.max_velocity);
+      vel_high = std::min(vel + dv, limits_.max_velocity);
+    }
+    jh_.setCommand(internal::saturate(jh_.getCommand(), vel_low, vel_high));
+  }
+
+  /// Stateless: nothing to reset.
+  void reset() {}
+
+private:
+  hardware_interface::JointHandle jh_;
+  JointLimits limits_;
+};
+
+}  // namespace joint_limits_interface
