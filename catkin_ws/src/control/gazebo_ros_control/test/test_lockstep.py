@@ -104,6 +104,19 @@ def run_scenario(env, tmp_path, tag, mode='true'):
         sim.stop()
 
 
+def assert_same_trajectory(a, b):
+    """Identical joint states at every stamp both recordings have. joint_state_controller's
+    realtime publisher skips a cycle when its thread is still busy (as upstream), so which
+    50 Hz samples get out depends on the machine; the states themselves must not."""
+    sa = {row[0]: row for row in a}
+    sb = {row[0]: row for row in b}
+    common = sorted(set(sa) & set(sb))
+    assert len(common) >= 0.8 * min(len(a), len(b)), \
+        'too few common samples: %d of %d / %d' % (len(common), len(a), len(b))
+    for t in common:
+        assert sa[t] == sb[t], 'runs differ at t=%.3f: %s vs %s' % (t * 1e-9, sa[t], sb[t])
+
+
 @pytest.mark.parametrize('mode', ['true', 'inprocess'])
 def test_two_runs_identical(env, tmp_path, mode):
     a = run_scenario(env, tmp_path, 'a', mode)
@@ -115,8 +128,7 @@ def test_two_runs_identical(env, tmp_path, mode):
     tilt = a[0][1].index('tilt_joint')
     sag = [row[2][tilt] for row in a[:n]]
     assert max(abs(x) for x in sag) > 0.01, 'the tilt arm should sag under gravity: %s' % sag[:10]
-    for ra, rb in zip(a[:n], b[:n]):
-        assert ra == rb, 'runs differ at t=%.3f: %s vs %s' % (ra[0] * 1e-9, ra, rb)
+    assert_same_trajectory(a, b)
 
 
 def test_inprocess_same_trajectory_as_child_process(env, tmp_path):
@@ -125,8 +137,7 @@ def test_inprocess_same_trajectory_as_child_process(env, tmp_path):
     b = run_scenario(env, tmp_path, 'i', 'inprocess')
     n = min(len(a), len(b))
     assert n >= 90 and a[0][0] == b[0][0], (a[:2], b[:2])
-    for ra, rb in zip(a[:n], b[:n]):
-        assert ra == rb, 'in-process differs at t=%.3f: %s vs %s' % (ra[0] * 1e-9, ra, rb)
+    assert_same_trajectory(a, b)
 
 
 def test_node_exits_with_simulator(env, tmp_path):
