@@ -2,7 +2,7 @@
 //
 // Publishes /clock (set use_sim_time for the other nodes), steps a fixed period of ~period
 // [s, default 0.01] per cycle, pacing itself to ~real_time_factor (default 1; 0 = as fast as
-// possible). The loop `read(); cm.update(); write();` runs in its own thread; callbacks are
+// possible). With ~publish_clock false (a second robot in one test) it only keeps its own time. The loop `read(); cm.update(); write();` runs in its own thread; callbacks are
 // served by an AsyncSpinner. Publishes ~commands (std_msgs/Float64MultiArray: the command of
 // every joint, in ~joints order) and ~positions after every cycle.
 #include <atomic>
@@ -24,6 +24,7 @@ int main(int argc, char** argv)
   pnh.getParam("joints", joints);
   double period_s = pnh.param("period", 0.01);
   double real_time_factor = pnh.param("real_time_factor", 1.0);
+  const bool publish_clock = pnh.param("publish_clock", true);
   if (period_s <= 0.0)
   {
     ROS_ERROR("dummy_robot_hw: ~period must be > 0 (got %f); using 0.01", period_s);
@@ -49,7 +50,8 @@ int main(int argc, char** argv)
     {
       rosgraph_msgs::Clock clock;
       clock.clock = t;
-      clock_pub.publish(clock);
+      if (publish_clock)
+        clock_pub.publish(clock);
 
       robot.read(t, period);
       cm.update(t, period);

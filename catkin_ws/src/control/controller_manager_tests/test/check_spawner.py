@@ -57,11 +57,16 @@ class SpawnerTest(unittest.TestCase):
         self.assertEqual('running', self.cm.states()['velocity_j2'])
         self.assertEqual('initialized', self.cm.states()['velocity_j3'])   # --stopped
 
+    def test_namespaced_manager(self):
+        CM('/robot2').wait_states({'velocity_j3': 'running', 'state': 'running'})
+        self.assertNotIn('velocity_j3', [n for n, s in self.cm.states().items() if s == 'running'])
+
     def test_sigint_stops_and_unloads(self):
         p = spawner('effort_j1', name='spawner_sigint')
-        expected = dict(self.launched, effort_j1='running')
-        self.cm.wait_states(expected)
-        out = stop(p)
+        try:
+            self.cm.wait_states(dict(self.launched, effort_j1='running'))
+        finally:
+            out = stop(p)
         self.assertEqual(self.launched, self.cm.states(), out)
         for line in ('Loading controller: effort_j1', 'Controller Spawner: Loaded controllers: effort_j1',
                      'Started controllers: effort_j1',
@@ -75,9 +80,12 @@ class SpawnerTest(unittest.TestCase):
                     '  joints: [joint1]\n  velocity: 0.25\n')
         try:
             p = spawner(f.name, '--namespace', '/', name='spawner_yaml')
-            self.cm.wait_states(dict(self.launched, yaml_ctrl='running'))
-            self.assertEqual('controller_manager_tests/VelocityTestController', rospy.get_param('/yaml_ctrl/type'))
-            stop(p, signal.SIGTERM)
+            try:
+                self.cm.wait_states(dict(self.launched, yaml_ctrl='running'))
+                self.assertEqual('controller_manager_tests/VelocityTestController',
+                                 rospy.get_param('/yaml_ctrl/type'))
+            finally:
+                stop(p, signal.SIGTERM)
             self.assertEqual(self.launched, self.cm.states())
         finally:
             os.unlink(f.name)
@@ -85,26 +93,35 @@ class SpawnerTest(unittest.TestCase):
     def test_wait_for_topic(self):
         pub = rospy.Publisher('/spawner_go', Bool, queue_size=1, latch=True)
         p = spawner('--wait-for', '/spawner_go', 'effort_j1', name='spawner_wait_for')
-        self.rosout.wait_for('Waiting for /spawner_go to be True')
-        self.assertNotIn('effort_j1', self.cm.states())
-        pub.publish(Bool(False))
-        pub.publish(Bool(True))
-        self.cm.wait_states(dict(self.launched, effort_j1='running'))
-        stop(p)
+        try:
+            deadline = time.monotonic() + WAIT
+            while pub.get_num_connections() < 1:   # the spawner subscribed: it is waiting
+                self.assertLess(time.monotonic(), deadline, 'the spawner never subscribed to /spawner_go')
+                time.sleep(0.05)
+            pub.publish(Bool(False))
+            self.assertNotIn('effort_j1', self.cm.states())
+            pub.publish(Bool(True))
+            self.cm.wait_states(dict(self.launched, effort_j1='running'))
+        finally:
+            out = stop(p)
+        self.assertIn('Waiting for /spawner_go to be True', out)
         self.assertEqual(self.launched, self.cm.states())
 
     def test_failed_load_and_stopped_teardown(self):
         p = spawner('--stopped', 'no_such_controller', 'effort_j1', name='spawner_fail')
-        self.cm.wait_states(dict(self.launched, effort_j1='initialized'))
-        self.rosout.wait_for('Failed to load no_such_controller')
-        stop(p)
+        try:
+            self.cm.wait_states(dict(self.launched, effort_j1='initialized'))
+        finally:
+            out = stop(p)
+        self.assertIn('Failed to load no_such_controller', out)
+        self.rosout.wait_for("Could not load controller 'no_such_controller' because the type was not specified")
         self.assertEqual(self.launched, self.cm.states())
 
     def test_missing_controller_manager(self):
         p = spawner('--namespace', '/nowhere', '--timeout', '1', 'x', name='spawner_missing')
         out = wait_exit(p)
         self.assertEqual(0, p.returncode, out)
-        self.rosout.wait_for("Controller Spawner couldn't find the expected controller_manager ROS interface.")
+        self.assertIn("Controller Spawner couldn't find the expected controller_manager ROS interface.", out)
 
 
 if __name__ == '__main__':

@@ -69,12 +69,23 @@ class CM(object):
 
 
 class RosoutWatcher(object):
-    """Collects /rosout messages; wait_for(text) returns the first one containing ``text``."""
+    """Collects /rosout messages of ``node`` (a long-running node, e.g. the controller manager's);
+    wait_for(text) returns the first one containing ``text``.
 
-    def __init__(self):
+    rostest starts no rosout node, so /rosout is subscribed directly, and the constructor waits
+    until the connection to ``node``'s publisher is up: nothing it logs afterwards is missed.
+    Messages of a node that has just started may be lost that way: check those on the
+    process's own output instead."""
+
+    def __init__(self, node='/dummy_robot_hw'):
         self.cond = threading.Condition()
         self.msgs = []
         self.sub = rospy.Subscriber('/rosout', Log, self._cb, queue_size=1000)
+        deadline = time.monotonic() + WAIT
+        while not any(getattr(c, 'callerid_pub', None) == node for c in list(self.sub.impl.connections or [])):
+            if time.monotonic() > deadline:
+                raise AssertionError('no /rosout connection to %s within %.0f s' % (node, WAIT))
+            time.sleep(0.05)
 
     def _cb(self, msg):
         with self.cond:

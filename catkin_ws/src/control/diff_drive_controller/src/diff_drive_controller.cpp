@@ -420,7 +420,7 @@ void DiffDriveController::cmdVelCallback(const geometry_msgs::Twist& command)
 {
   if (!isRunning())
   {
-    ROS_ERROR_NAMED(name_, "Can't accept new commands. Controller is not running.");
+    ROS_ERROR_THROTTLE_NAMED(1.0, name_, "Can't accept new commands. Controller is not running.");
     return;
   }
   if (!allow_multiple_cmd_vel_publishers_ && sub_command_.getNumPublishers() > 1)

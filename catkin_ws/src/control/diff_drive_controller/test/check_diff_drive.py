@@ -10,6 +10,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from control_msgs.msg import JointTrajectoryControllerState
@@ -35,6 +36,16 @@ def yaw_of(q):
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class DiffDriveTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -52,12 +63,13 @@ class DiffDriveTest(unittest.TestCase):
         rospy.Subscriber('/diffbot_controller/cmd_vel_out', TwistStamped, cls._set, 'cmd_out')
         rospy.Subscriber('/diffbot_controller/wheel_joint_controller_state', JointTrajectoryControllerState,
                          cls._set, 'wheel_state')
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=1000)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=1000)
         cls.cmd_pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=10)
         rospy.wait_for_service(CM + 'list_controllers', WALL_TIMEOUT)
         cls.list = rospy.ServiceProxy(CM + 'list_controllers', ListControllers)
         cls.load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
         cls.switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
+        cls.wait_for('/rosout of the diffbot', lambda: rosout_connected(cls.rosout, '/diffbot'))
         if MODE != 'fail':
             cls.wait_for('diffbot_controller running',
                          lambda: cls.state_of('diffbot_controller') == 'running')
@@ -194,6 +206,16 @@ class DiffDriveTest(unittest.TestCase):
         for value in (after.pose.pose.position.x, after.pose.pose.position.y, after.twist.twist.linear.x):
             self.assertFalse(math.isnan(value))
         self.assertAlmostEqual(after.pose.pose.position.x, before.pose.pose.position.x, delta=POSITION_TOLERANCE)
+        # and it drives on after the restart
+        self.drive(1.0, 0.0, 1.0)
+        start = self.last_odom()
+        self.drive(1.0, 0.0, 1.0)
+        end = self.last_odom()
+        dt = (end.header.stamp - start.header.stamp).to_sec()
+        travelled = math.hypot(end.pose.pose.position.x - start.pose.pose.position.x,
+                               end.pose.pose.position.y - start.pose.pose.position.y)   # heading is not 0 here
+        self.assertAlmostEqual(travelled, 1.0 * dt, delta=POSITION_TOLERANCE)
+        self.stop_and_settle()
 
     def test_basic_zz_not_running_refuses_commands(self):
         self.assertTrue(self.switch([], ['diffbot_controller'], 2, False, 0.0).ok)
@@ -281,9 +303,30 @@ class DiffDriveTest(unittest.TestCase):
         self.drive(0.33, 0.0, 2.5)
         with self.lock:
             stamps = [m.header.stamp for m in self.odom if start <= m.header.stamp < end]
-        self.assertIn(len(stamps), (19, 20, 21))   # 10 Hz over 2 s of sim time
+        self.assertIn(len(stamps), range(18, 22))   # 10 Hz over 2 s of sim time
         client.update_configuration({'left_wheel_radius_multiplier': 1.0, 'right_wheel_radius_multiplier': 1.0,
                                      'publish_rate': 50.0})
+        self.drive(0.0, 0.0, 0.3)
+
+    # --- multiwheel ---------------------------------------------------------------------------
+    def test_multiwheel_forward_and_turn(self):
+        self.drive(0.5, 0.2, 1.0)
+        start = self.last_odom()
+        self.drive(0.5, 0.2, 2.0)
+        end = self.last_odom()
+        dt = (end.header.stamp - start.header.stamp).to_sec()
+        turned = yaw_of(end.pose.pose.orientation) - yaw_of(start.pose.pose.orientation)
+        self.assertAlmostEqual(turned, 0.2 * dt, delta=ORIENTATION_TOLERANCE)
+        chord = math.hypot(end.pose.pose.position.x - start.pose.pose.position.x,
+                           end.pose.pose.position.y - start.pose.pose.position.y)
+        # arc of radius v / w: chord = 2 (v / w) sin(w dt / 2)
+        self.assertAlmostEqual(chord, 2 * (0.5 / 0.2) * math.sin(0.2 * dt / 2), delta=POSITION_TOLERANCE)
+        with self.lock:
+            js = self.js
+        vel = dict(zip(js.name, js.velocity))
+        self.assertEqual(vel['wheel_0_joint'], vel['wheel_2_joint'])
+        self.assertEqual(vel['wheel_1_joint'], vel['wheel_3_joint'])
+        self.assertAlmostEqual(vel['wheel_0_joint'], (0.5 - 0.2 * WHEEL_SEPARATION / 2) / WHEEL_RADIUS, delta=1e-6)
         self.drive(0.0, 0.0, 0.3)
 
     # --- fail ---------------------------------------------------------------------------------

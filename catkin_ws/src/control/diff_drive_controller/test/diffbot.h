@@ -1,10 +1,11 @@
 // The diffbot of diff_drive_controller's tests: a fake RobotHW whose wheel joints
 // `wheel_<i>_joint` follow their velocity commands exactly (VelocityJointInterface +
 // JointStateInterface). Services `start` / `stop`: while stopped, positions and velocities read
-// NaN (a disconnected robot).
+// NaN (a disconnected robot); after `start` the wheels continue from where they were.
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -25,6 +26,7 @@ public:
     , pos_(num_joints, 0.0)
     , vel_(num_joints, 0.0)
     , eff_(num_joints, 0.0)
+    , last_valid_pos_(num_joints, 0.0)
     , start_srv_(nh_.advertiseService("start", &Diffbot::startCallback, this))
     , stop_srv_(nh_.advertiseService("stop", &Diffbot::stopCallback, this))
   {
@@ -49,13 +51,20 @@ public:
     {
       for (std::size_t i = 0; i < pos_.size(); ++i)
       {
-        // after a start() the positions stay NaN one more cycle, as the robot's state is unknown
+        if (std::isnan(pos_[i]))  // first cycle after start(): the wheels did not move meanwhile
+        {
+          pos_[i] = last_valid_pos_[i];
+          vel_[i] = 0.0;
+        }
         pos_[i] += vel_[i] * period.toSec();
         vel_[i] = cmd_[i];
       }
     }
     else
     {
+      for (std::size_t i = 0; i < pos_.size(); ++i)
+        if (!std::isnan(pos_[i]))
+          last_valid_pos_[i] = pos_[i];
       std::fill(pos_.begin(), pos_.end(), std::numeric_limits<double>::quiet_NaN());
       std::fill(vel_.begin(), vel_.end(), std::numeric_limits<double>::quiet_NaN());
     }
@@ -80,6 +89,7 @@ private:
   hardware_interface::JointStateInterface jnt_state_interface_;
   hardware_interface::VelocityJointInterface jnt_vel_interface_;
   std::vector<double> cmd_, pos_, vel_, eff_;
+  std::vector<double> last_valid_pos_;  ///< positions when the robot was stopped
   ros::NodeHandle nh_;
   ros::ServiceServer start_srv_;
   ros::ServiceServer stop_srv_;

@@ -7,6 +7,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from control_msgs.msg import JointControllerState
@@ -20,6 +21,16 @@ RUNNING = ['joint_state_controller', 'position_controller', 'continuous_position
            'prismatic_position_controller', 'group_position_controller', 'effort_controller']
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class Fixture(object):
     def __init__(self):
         self.lock = threading.Lock()
@@ -27,7 +38,7 @@ class Fixture(object):
         self.states = {}
         self.logs = []
         rospy.Subscriber('/joint_states', JointState, self._js)
-        rospy.Subscriber('/rosout', Log, self._log)
+        self.rosout = rospy.Subscriber('/rosout', Log, self._log)
         for name in ('position_controller', 'continuous_position_controller',
                      'prismatic_position_controller'):
             rospy.Subscriber('/%s/state' % name, JointControllerState, self._state, name)
@@ -88,6 +99,7 @@ class EffortControllersTest(unittest.TestCase):
             return all(states.get(n) == 'running' for n in RUNNING)
         cls.f.wait_for('spawner starts every controller', all_running)
         cls.f.wait_for('first /joint_states', lambda: cls.f.joint_states is not None)
+        cls.f.wait_for('/rosout of the robot', lambda: rosout_connected(cls.f.rosout, '/test_robot'))
 
     def test_position_controller_converges(self):
         f = self.f
@@ -99,6 +111,20 @@ class EffortControllersTest(unittest.TestCase):
         self.assertEqual(state.set_point, 1.5)
         self.assertEqual((state.p, state.i, state.d), (100.0, 0.01, 10.0))
         self.assertFalse(state.antiwindup)
+
+    def test_position_pid_tuned_with_dynamic_reconfigure(self):
+        # practical work 5's self-study: tune the PID while it runs
+        import dynamic_reconfigure.client
+        client = dynamic_reconfigure.client.Client('/prismatic_position_controller/pid', timeout=WALL_TIMEOUT)
+        client.update_configuration({'p': 150.0, 'd': 25.0})
+        f = self.f
+
+        def gains_in_state():
+            with f.lock:
+                s = f.states.get('prismatic_position_controller')
+            return s is not None and (s.p, s.d) == (150.0, 25.0)
+        f.wait_for('new gains in the state topic', gains_in_state, 5.0)
+        self.assertEqual(rospy.get_param('/prismatic_position_controller/pid/p'), 150.0)
 
     def test_position_set_point_clamped_to_limits(self):
         f = self.f

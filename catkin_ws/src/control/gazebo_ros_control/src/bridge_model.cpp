@@ -63,4 +63,14 @@ bool BridgeModel::setState(const std::vector<std::string>& names, const std::vec
   return true;
 }
 
+void BridgeModel::setState(const double* position, const double* velocity, const double* effort)
+{
+  for (std::size_t j = 0; j < joints_.size(); ++j)
+  {
+    position_[j] = position[j];
+    velocity_[j] = velocity[j];
+    effort_[j] = effort[j];
+  }
+}
+
 }  // namespace gazebo_ros_control

@@ -141,6 +141,18 @@ bool GazeboRosControlNode::init(std::string* error)
   }
   controller_manager_.reset(new controller_manager::ControllerManager(robot_hw_sim_.get(), model_nh_));
 
+  if (options_.estop_topic.size())
+    estop_sub_ = model_nh_.subscribe(options_.estop_topic, 1, &GazeboRosControlNode::estopCallback, this);
+  if (options_.in_process)
+  {
+    spinner_.reset(new ros::AsyncSpinner(1));
+    spinner_->start();
+    ROS_INFO_STREAM("gazebo_ros_control: controller manager in namespace '"
+                    << (robot_namespace_.empty() ? "/" : robot_namespace_) << "' inside the simulator, "
+                    << joints.size() << " joint(s), control period " << control_period_ << " s");
+    return true;
+  }
+
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const BridgeJoint& j : joints)
   {
@@ -158,8 +170,6 @@ bool GazeboRosControlNode::init(std::string* error)
       &state_queue_);
   so.transport_hints = ros::TransportHints().tcpNoDelay();
   state_sub_ = model_nh_.subscribe(so);
-  if (!options_.estop_topic.empty())
-    estop_sub_ = model_nh_.subscribe(options_.estop_topic, 1, &GazeboRosControlNode::estopCallback, this);
 
   ROS_INFO_STREAM("gazebo_ros_control: controller manager in namespace '"
                   << (robot_namespace_.empty() ? "/" : robot_namespace_) << "', " << joints.size()
@@ -206,7 +216,38 @@ void GazeboRosControlNode::stateCallback(const sensor_msgs::JointStateConstPtr& 
                       robot_namespace_.c_str(), error.c_str(), bad_states_);
     return;
   }
-  const ros::Time t = msg->header.stamp;
+  update(msg->header.stamp);
+
+  std::size_t k = 0;
+  for (std::size_t j = 0; j < model_->size(); ++j)
+  {
+    const JointInterface iface = model_->joints()[j].interface;
+    if (iface == JointInterface::STATE)
+      continue;
+    const double cmd = model_->command(j);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    command_msg_.effort[k] = iface == JointInterface::EFFORT ? cmd : nan;
+    command_msg_.velocity[k] = iface == JointInterface::VELOCITY ? cmd : nan;
+    command_msg_.position[k] = iface == JointInterface::POSITION ? cmd : nan;
+    ++k;
+  }
+  command_msg_.header.stamp = msg->header.stamp;
+  command_pub_.publish(command_msg_);
+}
+
+void GazeboRosControlNode::stepDirect(const ros::Time& t, const double* position, const double* velocity,
+                                      const double* effort, double* command)
+{
+  const std::size_t n = model_->size();
+  model_->setState(position, velocity, effort);
+  update(t);
+  for (std::size_t j = 0; j < n; ++j)
+    command[j] = model_->joints()[j].interface == JointInterface::STATE ? std::numeric_limits<double>::quiet_NaN()
+                                                                        : model_->command(j);
+}
+
+void GazeboRosControlNode::update(const ros::Time& t)
+{
   ros::Duration period(control_period_);
   if (have_last_update_ && t > last_update_)
     period = t - last_update_;
@@ -226,22 +267,6 @@ void GazeboRosControlNode::stateCallback(const sensor_msgs::JointStateConstPtr& 
   robot_hw_sim_->readSim(t, period);
   controller_manager_->update(t, period, reset_controllers);
   robot_hw_sim_->writeSim(t, period);
-
-  std::size_t k = 0;
-  for (std::size_t j = 0; j < model_->size(); ++j)
-  {
-    const JointInterface iface = model_->joints()[j].interface;
-    if (iface == JointInterface::STATE)
-      continue;
-    const double cmd = model_->command(j);
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    command_msg_.effort[k] = iface == JointInterface::EFFORT ? cmd : nan;
-    command_msg_.velocity[k] = iface == JointInterface::VELOCITY ? cmd : nan;
-    command_msg_.position[k] = iface == JointInterface::POSITION ? cmd : nan;
-    ++k;
-  }
-  command_msg_.header.stamp = t;
-  command_pub_.publish(command_msg_);
 }
 
 }  // namespace gazebo_ros_control

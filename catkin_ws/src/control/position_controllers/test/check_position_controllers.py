@@ -5,6 +5,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from controller_manager_msgs.srv import ListControllers, LoadController
@@ -16,6 +17,16 @@ WALL_TIMEOUT = 60.0
 RUNNING = ['joint_state_controller', 'position_controller', 'group_position_controller']
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class PositionControllersTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -24,13 +35,14 @@ class PositionControllersTest(unittest.TestCase):
         cls.js = None
         cls.logs = []
         rospy.Subscriber('/joint_states', JointState, cls._set, 'js')
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
         cls.pubs = {}
         rospy.wait_for_service('/controller_manager/list_controllers', WALL_TIMEOUT)
         lister = rospy.ServiceProxy('/controller_manager/list_controllers', ListControllers)
         cls.wait_for('every controller running', lambda: all(
             {c.name: c.state for c in lister().controller}.get(n) == 'running' for n in RUNNING))
         cls.wait_for('first /joint_states', lambda: cls.js is not None)
+        cls.wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
 
     @classmethod
     def _set(cls, msg, attr):

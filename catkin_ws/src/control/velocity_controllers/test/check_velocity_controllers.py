@@ -5,6 +5,7 @@ import threading
 import time
 import unittest
 
+import rosgraph
 import rospy
 import rostest
 from control_msgs.msg import JointControllerState
@@ -18,6 +19,16 @@ RUNNING = ['joint_state_controller', 'wheel_controller', 'position_controller',
            'group_velocity_controller']
 
 
+
+def rosout_connected(subscriber, node):
+    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
+    rosout node, so a line logged before that connection exists is never seen."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+    except Exception:
+        return False
+    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
+
 class VelocityControllersTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -28,13 +39,14 @@ class VelocityControllersTest(unittest.TestCase):
         cls.logs = []
         rospy.Subscriber('/joint_states', JointState, cls._set, 'js')
         rospy.Subscriber('/position_controller/state', JointControllerState, cls._set, 'state')
-        rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
+        cls.rosout = rospy.Subscriber('/rosout', Log, lambda m: cls.logs.append(m.msg), queue_size=100)
         cls.pubs = {}
         rospy.wait_for_service('/controller_manager/list_controllers', WALL_TIMEOUT)
         lister = rospy.ServiceProxy('/controller_manager/list_controllers', ListControllers)
         cls.wait_for('every controller running', lambda: all(
             {c.name: c.state for c in lister().controller}.get(n) == 'running' for n in RUNNING))
         cls.wait_for('first /joint_states', lambda: cls.js is not None)
+        cls.wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
 
     @classmethod
     def _set(cls, msg, attr):

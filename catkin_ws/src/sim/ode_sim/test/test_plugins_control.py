@@ -302,6 +302,8 @@ def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
     monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [])
     _, _, plug = bridge({'hinge': POS})
     assert plug.node_proc is None       # not built: an ERROR, the bridge still loads
+    with pytest.raises(ModelError, match='controllerNode'):
+        bridge({'hinge': POS}, controllerNode='maybe')
 
 
 def integration():

@@ -89,8 +89,6 @@ def main(argv, api=None):
         print('controller_manager: %s' % exc, file=sys.stderr)
         print(USAGE, file=sys.stderr)
         return 2
-    if api is None:
-        import rospy
+    if api is None:  # service proxies need no node: nothing is registered with the master
         from controller_manager import controller_manager_interface as api
-        rospy.init_node('controller_manager_cli', anonymous=True, disable_signals=True)
     return 0 if run(cmd, names, options, api) else 1

@@ -28,8 +28,8 @@ class RosServices(object):
 
     def wait(self, timeout, stop_event):
         """Wait for the three services; ``timeout`` [s wall] 0 = forever. While /use_sim_time is
-        set and no /clock has arrived yet, keep waiting past the timeout (the simulator is
-        still starting). False if they did not appear."""
+        set and no /clock has arrived yet, keep waiting (the simulator is still starting); the
+        timeout then counts from the clock's start. False if they did not appear."""
         start = time.monotonic()
         for name in self.names.values():
             rospy.loginfo("Controller Spawner: Waiting for service " + name)
@@ -43,6 +43,7 @@ class RosServices(object):
                     if rospy.get_param('/use_sim_time', False) and rospy.get_rostime().is_zero():
                         rospy.loginfo_throttle(10, "Controller Spawner: waiting for the simulator: "
                                                "/use_sim_time is set and no /clock has been received yet")
+                        start = time.monotonic()   # the timeout counts from the clock's start
                         continue
                     return False
             else:

@@ -84,7 +84,7 @@ private:
   {
     if (msg->data.size() != n_joints_)
     {
-      ROS_ERROR_STREAM("Dimension of command (" << msg->data.size() << ") does not match number of joints ("
+      ROS_ERROR_STREAM_THROTTLE(1.0, "Dimension of command (" << msg->data.size() << ") does not match number of joints ("
                                                 << n_joints_ << ")! Not executing!");
       return;
     }

@@ -28,6 +28,9 @@ public:
                 const std::vector<double>& velocity, const std::vector<double>& effort,
                 std::string* error);
 
+  /// Takes the state of every joint in joints() order (arrays of size()).
+  void setState(const double* position, const double* velocity, const double* effort);
+
   double position(std::size_t j) const { return position_[j]; }
   double velocity(std::size_t j) const { return velocity_[j]; }
   double effort(std::size_t j) const { return effort_[j]; }

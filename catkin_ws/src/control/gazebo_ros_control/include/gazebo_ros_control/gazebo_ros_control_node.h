@@ -33,6 +33,9 @@ public:
     std::string estop_topic;      ///< relative to NS; empty = no e-stop
     int parent_pid = 0;           ///< exit when this process is no longer the parent (0: never)
     double wait_for_joints = 30.0;  ///< [s, wall] to wait for NS/ode_sim/joints
+    /// inside the simulator's process: no bridge topics, the simulator calls stepDirect()
+    /// every control period; the services get an AsyncSpinner of their own from init()
+    bool in_process = false;
   };
 
   GazeboRosControlNode(const ros::NodeHandle& model_nh, const Options& options);
@@ -51,7 +54,15 @@ public:
   /// One control period: state in, controllers, command out (also used by tests).
   void stateCallback(const sensor_msgs::JointStateConstPtr& msg);
 
+  /// In-process control period at sim time t: the joints' state in NS/ode_sim/joints order
+  /// in, their commands out (NaN: none yet, or a state-only joint). Arrays of size().
+  void stepDirect(const ros::Time& t, const double* position, const double* velocity, const double* effort,
+                  double* command);
+
+  std::size_t size() const { return model_ ? model_->size() : 0; }
+
 private:
+  void update(const ros::Time& t);
   void estopCallback(const std_msgs::BoolConstPtr& msg);
   bool parentAlive() const;
 
@@ -64,6 +75,7 @@ private:
   std::unique_ptr<DefaultRobotHWSim> robot_hw_sim_;
   std::unique_ptr<controller_manager::ControllerManager> controller_manager_;
 
+  std::unique_ptr<ros::AsyncSpinner> spinner_;
   ros::CallbackQueue state_queue_;
   ros::Subscriber state_sub_;
   ros::Subscriber estop_sub_;

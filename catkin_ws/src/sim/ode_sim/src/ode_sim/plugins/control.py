@@ -27,6 +27,10 @@ the contract documented in doc/ros_control_bridge.md:
   gazebo_ros_control; it is stopped with the plugin (model deleted, simulator exits) and
   exits by itself if the simulator dies. `<controllerNode>false</controllerNode>` (an ode_sim
   extension) starts none: a RobotHW of one's own speaks the topics.
+  `<controllerNode>inprocess</controllerNode>` runs the same controller manager inside this
+  process (gazebo_ros_control's libgazebo_ros_control_inprocess.so through ctypes): every
+  control period the plugin hands it the joint states and takes the commands back directly,
+  no topics and no lockstep waiting (as gazebo_ros_control in gzserver; much faster).
 
 Tags as gazebo_ros_control (noetic): robotNamespace (model name), robotParam
 (robot_description; the transmissions come with the model here), robotSimType (only
@@ -55,6 +59,9 @@ DEFAULT_LOCKSTEP_TIMEOUT = 1.0
 NODE_PACKAGE = 'gazebo_ros_control'
 NODE_TYPE = 'gazebo_ros_control_node'
 NODE_STOP_TIMEOUT = 5.0             # wall seconds between SIGINT and SIGKILL
+INPROCESS_LIBRARY = 'libgazebo_ros_control_inprocess.so'
+NODE_MODES = {'true': 'process', '1': 'process', 'process': 'process', 'inprocess': 'inprocess',
+              'false': None, '0': None}
 
 
 def bare_interface(name):
@@ -168,8 +175,14 @@ class GazeboRosControl(Plugin):
         else:
             self.control_period = dt
         self.estop_topic = self.param('eStopTopic', '', warn=False).strip()
-        self.start_node = self.param('controllerNode', True, bool, warn=False)
+        mode = self.param('controllerNode', 'true', warn=False).strip().lower()
+        if mode not in NODE_MODES:
+            raise self.error("<controllerNode> must be true (a child process), inprocess or false, "
+                             "got %r" % mode)
+        self.node_mode = NODE_MODES[mode]
+        self.start_node = self.node_mode is not None
         self.node_proc = None
+        self._inproc = None
         self.joints = self._joints_from_transmissions()
         self.by_name = {j.name: j for j in self.joints}
         self.lockstep_timeout = DEFAULT_LOCKSTEP_TIMEOUT
@@ -204,8 +217,10 @@ class GazeboRosControl(Plugin):
             rospy.logwarn("gazebo_ros_control: model '%s' has no <transmission>: nothing to "
                           "control" % model.name)
         rospy.loginfo("Starting gazebo_ros_control plugin in namespace: %s" % (self.ns or '/'))
-        if ros_up() and self.start_node:
+        if ros_up() and self.node_mode == 'process':
             self._start_controller_node()
+        elif ros_up() and self.node_mode == 'inprocess':
+            self._start_inprocess()
 
     # ------------------------------------------------------------------ setup
     def _joints_from_transmissions(self):
@@ -296,6 +311,50 @@ class GazeboRosControl(Plugin):
         rospy.loginfo("gazebo_ros_control: started the controller manager node in %s (pid %d)"
                       % (ns, self.node_proc.pid))
 
+    def _start_inprocess(self):
+        """The controller manager inside this process (see the module doc)."""
+        import ctypes
+        try:
+            lib = ctypes.CDLL(INPROCESS_LIBRARY)
+        except OSError as e:
+            raise self.error("<controllerNode>inprocess</controllerNode>: cannot load %s (%s): build "
+                             "the workspace and source devel/setup.bash" % (INPROCESS_LIBRARY, e))
+        lib.grc_create.restype = ctypes.c_void_p
+        lib.grc_create.argtypes = [ctypes.c_char_p, ctypes.c_char_p, ctypes.c_char_p, ctypes.c_int]
+        lib.grc_size.argtypes = [ctypes.c_void_p]
+        arr = ctypes.POINTER(ctypes.c_double)
+        lib.grc_update.argtypes = [ctypes.c_void_p, ctypes.c_longlong, arr, arr, arr, arr]
+        lib.grc_update.restype = None
+        lib.grc_destroy.argtypes = [ctypes.c_void_p]
+        err = ctypes.create_string_buffer(512)
+        handle = lib.grc_create(('/' + self.ns.strip('/')).encode(), self.estop_topic.encode(), err, 512)
+        if not handle:
+            raise self.error('the in-process controller manager failed: %s' % err.value.decode())
+        n = len(self.joints)
+        if lib.grc_size(handle) != n:
+            lib.grc_destroy(handle)
+            raise self.error('the in-process controller manager sees %d joints, the plugin %d'
+                             % (lib.grc_size(handle), n))
+        buf = ctypes.c_double * n
+        self._inproc = (lib, handle, buf(), buf(), buf(), buf())
+
+    def _inprocess_update(self, stamp):
+        lib, handle, pos, vel, eff, cmd = self._inproc
+        for k, j in enumerate(self.joints):
+            pos[k] = j.position()
+            vel[k] = j.joint.velocity()
+            eff[k] = j.joint.effort()
+        lib.grc_update(handle, stamp.to_nsec(), pos, vel, eff, cmd)
+        for k, j in enumerate(self.joints):
+            v = cmd[k]
+            if v == v and j.interface != STATE:     # NaN: no command yet
+                j.command = v
+
+    def _stop_inprocess(self):
+        inproc, self._inproc = self._inproc, None
+        if inproc is not None:
+            inproc[0].grc_destroy(inproc[1])
+
     def _stop_controller_node(self):
         proc, self.node_proc = self.node_proc, None
         if proc is None or proc.poll() is not None:
@@ -366,6 +425,13 @@ class GazeboRosControl(Plugin):
         if last is None or t < last or t - last >= self.control_period - 1e-9:
             self._last_period = t
             stamp = self.ctx.now()
+            if self._inproc is not None:
+                # synchronous by construction: the commands of t_k come back from the call
+                if self.state_pub.get_num_connections() > 0:
+                    self.state_pub.publish(self.state_msg(stamp))
+                self._inprocess_update(stamp)
+                self.apply(self.ctx.physics.dt)
+                return
             with self._cond:
                 self._state_stamp = stamp.to_nsec()
             self.state_pub.publish(self.state_msg(stamp))
@@ -450,6 +516,7 @@ class GazeboRosControl(Plugin):
             self._closing = True
             self._cond.notify_all()
         self._stop_controller_node()
+        self._stop_inprocess()
         close(self.state_pub, self.cmd_sub, self.estop_sub)
 
 
