@@ -82,8 +82,6 @@ def test_position_hold_and_wheel_velocity_in_lockstep(roscore, tmp_path):
     wv = np.array(out['wheel_vel'])[stamps > 1.0]
     assert wv == pytest.approx([2.0] * len(wv), rel=0.02)
     log = sim.output()
-    # while the client ran, every period was answered in time (after its 3 s it exits, and the
-    # simulator may wait out one period for it before it notices: not the bridge's fault)
-    import re
-    late = [float(t) for t in re.findall(r'lockstep: no joint command for t=([0-9.]+)', log)]
-    assert not [t for t in late if t < 3.0], log[-3000:]
+    # every period answered, and none waited out at the end: the client unregisters before it
+    # exits and the simulator stops waiting for a controller that is gone
+    assert 'lockstep: no joint command' not in log, log[-3000:]
