@@ -63,7 +63,8 @@ def main():
     args = ap.parse_args()
 
     os.makedirs(OUT, exist_ok=True)
-    course_testing.become_subreaper()
+    # no subreaper or orphan reaping here: run_tests.py reaps what each test leaves behind, and
+    # reaping every descendant of this process would kill the CPU load itself
     env = dict(os.environ, PYTHONUNBUFFERED='1')    # the round's log fills as it runs
     rounds = []
     with course_testing.cpu_load(args.workers) as load:
@@ -71,13 +72,17 @@ def main():
             load.workers, os.cpu_count(), args.repeat), flush=True)
         for k in range(1, args.repeat + 1):
             print('=== round %d of %d' % (k, args.repeat), flush=True)
-            rounds.append(one_round(k, args, env))
-            course_testing.reap_orphans()
+            if load.busy_workers() < load.workers:
+                raise SystemExit('stress: the CPU load died before round %d' % k)
+            r = one_round(k, args, env)
+            r['load_alive'] = load.busy_workers() >= load.workers
+            rounds.append(r)
 
     print('\n=== stress summary (%d CPU workers)' % load.workers)
-    print('round   time     passed  failed')
+    print('round   time     passed  failed  load kept up')
     for k, r in enumerate(rounds, 1):
-        print('%5d %6.0f s %9d %7d' % (k, r['wall'], r['passed'], r['failed']))
+        print('%5d %6.0f s %9d %7d  %s' % (k, r['wall'], r['passed'], r['failed'],
+                                           'yes' if r['load_alive'] else 'NO'))
     count = {}
     for r in rounds:
         for name in r['failures']:
@@ -91,7 +96,7 @@ def main():
     total_p = sum(r['passed'] for r in rounds)
     total_f = sum(r['failed'] for r in rounds)
     print('%d passed, %d failed' % (total_p, total_f), flush=True)
-    return 1 if total_f else 0
+    return 1 if total_f or not all(r['load_alive'] for r in rounds) else 0
 
 
 if __name__ == '__main__':
