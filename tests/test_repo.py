@@ -75,6 +75,7 @@ def test_debian_deps_installed():
     assert not missing, 'deps/debian.txt lists packages that are not installed: %s' % missing
 
 
+@pytest.mark.serial   # runs setup.sh: rebuilds the workspace every other test uses
 def test_setup_is_idempotent():
     """A second run installs nothing and rebuilds nothing (its speed: bench/setup_rerun)."""
     r = subprocess.run(['bash', os.path.join(REPO, 'scripts', 'setup.sh')], capture_output=True, text=True,

@@ -5,6 +5,7 @@ is not enough to stop a launch that hangs: `run` and `Proc.stop` also remember t
 process tree and kill what is left of it, and `become_subreaper` lets a long-lived parent
 (the test runner, labs/grade) collect orphans that escaped every group.
 """
+import contextlib
 import ctypes
 import os
 import signal
@@ -83,9 +84,15 @@ def become_subreaper():
         pass
 
 
-def reap_orphans():
-    """Kill every remaining descendant of this process and reap it; returns their commands."""
+def reap_orphans(keep=()):
+    """Kill every remaining descendant of this process and reap it; returns their commands.
+    `keep`: pids of children still running (another lane of a concurrent test run) whose
+    process trees are left alone."""
     left = descendants(os.getpid())
+    for pid in keep:
+        left.pop(pid, None)
+        for child in descendants(pid):
+            left.pop(child, None)
     names = []
     for pid in left:
         try:
@@ -131,12 +138,18 @@ def stop_tree(popen, first=signal.SIGINT, grace=10.0):
     return popen.poll()
 
 
-def run(cmd, timeout, env=None, cwd=None, log=None):
+def run(cmd, timeout, env=None, cwd=None, log=None, started=None, lock=None):
     """Run cmd in its own process group, output to the file `log` (or inherited when None).
-    On timeout stop its whole tree. Returns (exit code or None, timed_out)."""
+    On timeout stop its whole tree. Returns (exit code or None, timed_out).
+    A concurrent runner passes `started(popen)`, called under `lock` together with the process's
+    creation, so that its orphan reaper (holding the same lock) never sees an unregistered child."""
     out = open(log, 'wb') if log else None
-    p = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=out, stderr=subprocess.STDOUT if out else None,
-                         stdin=subprocess.DEVNULL, start_new_session=True)
+    with lock if lock is not None else contextlib.nullcontext():
+        p = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=out,
+                             stderr=subprocess.STDOUT if out else None,
+                             stdin=subprocess.DEVNULL, start_new_session=True)
+        if started:
+            started(p)
     try:
         try:
             return p.wait(timeout), False
