@@ -122,7 +122,7 @@ def test_weights_neff_and_resampling():
 
 def test_filter_corrects_drifting_odometry_in_a_room():
     rng = np.random.default_rng(7)
-    p = SlamParams(particles=15, linearUpdate=0.1, angularUpdate=0.2, xmin=-5, ymin=-5, xmax=5, ymax=5)
+    p = SlamParams(particles=10, linearUpdate=0.1, angularUpdate=0.2, xmin=-5, ymin=-5, xmax=5, ymax=5)
     slam = GridSlam(p, seed=1)
     truth, odom = np.array([-2.0, -1.0, 0.0]), np.array([-2.0, -1.0, 0.0])
     errors = []
