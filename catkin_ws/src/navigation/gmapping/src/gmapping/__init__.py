@@ -1,0 +1,1 @@
+"""slam_gmapping's ROS-free core: an RBPF grid SLAM (GridSlam) after openslam gmapping."""
