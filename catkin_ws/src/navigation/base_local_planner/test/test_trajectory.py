@@ -1,0 +1,89 @@
+"""Trajectory rollout core without a master: map grids, simulation, scoring, choice."""
+import math
+
+import numpy as np
+import pytest
+
+from base_local_planner.trajectory_planner import (LocalGrid, TrajectoryParams,
+                                                   TrajectoryPlanner, plan_cells, wavefront)
+
+FOOTPRINT = [(-0.09, -0.13), (-0.09, 0.13), (0.09, 0.13), (0.09, -0.13)]
+
+
+def free_grid(n=60, res=0.05):
+    return LocalGrid(np.zeros((n, n), dtype=np.uint8), res, 0.0, 0.0)
+
+
+def test_wavefront_goes_around_obstacles():
+    g = free_grid(10, 1.0)
+    g.data[0:8, 5] = 254
+    d, impossible = wavefront(g, [(0, 0)])
+    assert d[0, 4] == 4
+    assert d[0, 6] == 4 + 8 + 8 + 2     # up, over the wall's end, down
+    assert d[0, 5] == impossible         # the obstacle itself
+    assert d[9, 9] == 18
+
+
+def test_plan_cells_dense():
+    g = free_grid(20, 0.1)
+    cells = plan_cells(g, [(0.05, 0.05), (1.05, 0.05)])
+    assert cells[0] == (0, 0) and cells[-1] == (10, 0) and len(cells) == 11
+
+
+def test_simulation_respects_acceleration_and_kinematics():
+    p = TrajectoryParams(sim_time=1.0, acc_lim_x=1.0, acc_lim_theta=2.0)
+    tp = TrajectoryPlanner(p, FOOTPRINT)
+    tp.update_plan(free_grid(), [(0.5, 1.5), (2.9, 1.5)])
+    tr = tp.simulate(0.5, 1.5, 0.0, 0.0, 0.0, 0.0, [[0.5, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    # v ramps 0 -> 0.5 m/s in 0.5 s, then cruises: 0.125 + 0.25 = 0.375 m in 1 s (minus a step)
+    assert tr.x[0, -1] - 0.5 == pytest.approx(0.375, abs=0.03)
+    assert tr.y[0, -1] == pytest.approx(1.5)
+    assert tr.th[1, -1] == pytest.approx(0.75, abs=0.05)   # 0.25 + 0.5 rad
+    assert tr.x[1, -1] == pytest.approx(0.5)
+
+
+def test_cost_terms_and_invalid_trajectories():
+    p = TrajectoryParams(sim_time=1.0, pdist_scale=0.6, gdist_scale=0.8, occdist_scale=0.01,
+                         dwa=True)
+    g = free_grid()
+    g.data[:, 40] = 254                    # a wall at x = 2.0 m
+    tp = TrajectoryPlanner(p, FOOTPRINT)
+    tp.update_plan(g, [(0.5, 1.5), (1.5, 1.5)])
+    tr = tp.simulate(0.5, 1.5, 0.0, 0.0, 0.0, 0.0,
+                     [[0.5, 0.0, 0.0], [1.6, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    # 0.5 m/s for 1 s ends near (1.0, 1.5): on the path, 10 cells from the local goal
+    end = tp.grid.cells(np.array([tr.x[0, -1]]), np.array([tr.y[0, -1]]))
+    gd = tp.goal_map[end[1][0], end[0][0]]
+    assert gd in (10, 11)
+    assert tr.cost[0] == pytest.approx(0.8 * gd)
+    # 1.6 m/s for 1 s runs into the wall: the footprint check makes it illegal
+    assert tp.resolve(tr, 1) is False and tr.cost[1] == -1
+    # standing still is valid but far from the goal
+    assert tr.cost[2] > tr.cost[0]
+
+
+def test_find_best_path_drives_towards_the_goal_and_turns_in_place_when_facing_away():
+    p = TrajectoryParams(max_vel_x=0.6, min_vel_x=0.35, max_vel_theta=0.85,
+                         min_vel_theta=-0.85, min_in_place_vel_theta=0.9, acc_lim_theta=5,
+                         acc_lim_x=1, acc_lim_y=1, holonomic_robot=False)
+    tp = TrajectoryPlanner(p, FOOTPRINT)
+    tp.update_plan(free_grid(), [(0.5, 1.5), (2.5, 1.5)])
+    vx, vy, vth, cost, pts = tp.find_best_path(0.5, 1.5, 0.0, 0.0, 0.0, 0.0)
+    assert cost >= 0 and vx >= 0.35 and abs(vth) < 0.3
+    assert pts[-1, 0] > 0.6
+    # facing a wall 0.2 m ahead: no forward arc fits, a rotation in place is chosen
+    g = free_grid()
+    g.data[:, 17:19] = 254                 # wall at x = 0.85..0.95 m
+    tp2 = TrajectoryPlanner(p, FOOTPRINT)
+    tp2.update_plan(g, [(0.6, 1.5), (0.6, 2.5)])
+    vx, vy, vth, cost, pts = tp2.find_best_path(0.6, 1.5, 0.0, 0.0, 0.0, 0.0)
+    assert cost >= 0 and vx == 0.0 and abs(vth) >= 0.9
+
+
+def test_check_trajectory():
+    tp = TrajectoryPlanner(TrajectoryParams(), FOOTPRINT)
+    g = free_grid()
+    g.data[30, 30] = 254
+    tp.update_plan(g, [(0.5, 1.5), (2.5, 1.5)])
+    assert tp.check_trajectory(0.5, 0.5, 0.0, 0, 0, 0, 0.0, 0.0, 0.5)
+    assert not tp.check_trajectory(1.3, 1.525, 0.0, 0, 0, 0, 0.5, 0.0, 0.0)
