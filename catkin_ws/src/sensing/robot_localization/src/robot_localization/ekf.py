@@ -138,8 +138,52 @@ class Ekf:
         return self.correct(m)
 
     def correct(self, m):
+        """Kalman update with m. A diagonal measurement covariance (the usual case) is fused as
+        sequential scalar updates, equal to the batch update but free of LAPACK calls (which
+        cost milliseconds on a loaded machine); the Mahalanobis distance of the whole vector is
+        accumulated on the way (the chain rule of the Gaussian likelihood)."""
         idx = m.indices
         R = self.sanitize_covariance(m.covariance)
+        if np.count_nonzero(R - np.diag(np.diagonal(R))) == 0:
+            return self._correct_sequential(m, idx, np.diagonal(R))
+        return self._correct_batch(m, idx, R)
+
+    def _commit(self, x, P):
+        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
+            self.nan_detected = True
+            return False
+        for i in ANGLES:
+            x[i] = normalize_angle(x[i])
+        self.x, self.P = x, P
+        return True
+
+    def _correct_sequential(self, m, idx, r):
+        x = self.x.copy()
+        P = self.P.copy()
+        sq = 0.0
+        z = m.z
+        for k in range(len(idx)):
+            i = idx[k]
+            nu = z[k] - x[i]
+            if i == ROLL or i == PITCH or i == YAW:
+                nu = normalize_angle(nu)
+            Pi = P[:, i].copy()
+            S = Pi[i] + r[k]
+            if not S > 0.0:
+                return False
+            sq += nu * nu / S
+            K = Pi / S
+            x += K * nu
+            # Joseph form for a scalar measurement, (I - K h) P (I - K h)^T + K r K^T,
+            # reduces to P - Pi Pi^T / S; symmetry is restored below
+            P -= Pi[:, None] * K[None, :]
+        if math.isfinite(m.threshold) and sq >= m.threshold * m.threshold:
+            self.rejected += 1
+            return False
+        P = 0.5 * (P + P.T)
+        return self._commit(x, P)
+
+    def _correct_batch(self, m, idx, R):
         innovation = m.z - self.x[idx]
         for k, i in enumerate(idx):
             if i in ANGLES:
@@ -161,10 +205,4 @@ class Ekf:
         IKH = np.eye(STATE_SIZE)
         IKH[:, idx] -= K
         P = IKH @ self.P @ IKH.T + K @ R @ K.T
-        if not (np.all(np.isfinite(x)) and np.all(np.isfinite(P))):
-            self.nan_detected = True
-            return False
-        for i in ANGLES:
-            x[i] = normalize_angle(x[i])
-        self.x, self.P = x, P
-        return True
+        return self._commit(x, P)
