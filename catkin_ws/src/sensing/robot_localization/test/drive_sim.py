@@ -3,11 +3,11 @@ import math
 import random
 
 
-def drive(duration=60.0, odom_rate=50.0, imu_rate=100.0, seed=7):
+def drive(duration=60.0, odom_rate=25.0, imu_rate=50.0, seed=7):
     """Returns (truth, events): truth(t) -> (x, y, yaw); events sorted by time:
     ('odom', t, (x, y, yaw, v, w)) wheel odometry (integrated with slip), ('imu', t, w_meas)."""
     rnd = random.Random(seed)
-    dt = 0.001
+    dt = 0.005
     x = y = yaw = 0.0
     ox = oy = oyaw = 0.0
     truth = []
@@ -21,7 +21,7 @@ def drive(duration=60.0, odom_rate=50.0, imu_rate=100.0, seed=7):
         v = 0.3 + 0.1 * math.sin(0.2 * t)
         w = 0.5 * math.sin(0.25 * t) + 0.2 * math.sin(0.9 * t)
         # wheel slip: the wheels over-report rotation (skid on turns) and occasionally spin
-        if i % 1000 == 0:
+        if i % 200 == 0:
             slip_scale = 1.0 + rnd.uniform(0.05, 0.25)
         w_wheel = w * slip_scale + rnd.gauss(0, 0.02)
         v_wheel = v * (1.0 + 0.02) + rnd.gauss(0, 0.01)
@@ -42,5 +42,5 @@ def drive(duration=60.0, odom_rate=50.0, imu_rate=100.0, seed=7):
     return truth, events
 
 
-def truth_at(truth, t, dt=0.001):
+def truth_at(truth, t, dt=0.005):
     return truth[min(len(truth) - 1, int(round(t / dt)))][1:]
