@@ -1,0 +1,1 @@
+"""Re-implementation of robot_localization's ekf_localization_node (Python + NumPy)."""
