@@ -1,0 +1,318 @@
+/*
+ * simulate: an Arduino Mega (ATmega2560, 16 MHz) on simavr for rosserial sketches.
+ *
+ *   simulate ELF [--speed X] [--distance CM] [--quiet]
+ *
+ * UART0 (Serial) is bridged to a pseudo-terminal; its path is the first line on stdout:
+ *   pty: /dev/pts/N
+ * Emulated around the MCU:
+ *   - the LED on pin 13 (PB7): every change is reported on stdout as  "pin 13 <0|1> <ms>"
+ *   - an HC-SR04 with TRIG on pin 11 (PB5) and ECHO on pin 12 (PB6): a trigger pulse is
+ *     answered with an echo pulse of 2*distance/343 m/s (distance set by --distance or by the
+ *     stdin command "distance CM"); each echo is reported as "echo <cm> <us> <ms>"
+ * Side channel: stdout lines (events, flushed) and stdin commands, one a line:
+ *   distance CM      set the ultrasonic distance (cm)
+ *   quit             stop
+ * Time: simulated time is paced to the wall clock times --speed (1 = real time, default;
+ * 0 = as fast as possible). On exit, stderr gets "speed: R x real time (N cycles in S s)".
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <simavr/avr_ioport.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_irq.h>
+
+#define F_CPU 16000000UL
+#define SOUND_SPEED 343.0
+
+static avr_t *avr;
+static int pty_master = -1, pty_slave = -1;
+static volatile sig_atomic_t stop_requested;
+static int uart_xon = 1;
+static avr_irq_t *uart_in_irq;
+
+static unsigned char in_buf[4096];   /* host -> MCU bytes waiting for the UART */
+static size_t in_len, in_pos;
+
+static double distance_cm = 100.0;
+static uint64_t trig_rise_cycle;
+static avr_irq_t *echo_irq;
+static int quiet;
+
+static double now_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static double sim_ms(void) { return avr->cycle * 1000.0 / F_CPU; }
+
+static void on_signal(int sig) { (void)sig; stop_requested = 1; }
+
+/* ---- UART0 <-> pty ---------------------------------------------------------------------- */
+
+static void uart_out_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  unsigned char b = (unsigned char)value;
+  /* nobody listening and the pty buffer full: the byte is lost, as on a real line */
+  if (write(pty_master, &b, 1) < 0 && errno != EAGAIN && errno != EIO)
+    perror("simulate: pty write");
+}
+
+static void uart_xon_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)value; (void)param;
+  uart_xon = 1;
+}
+
+static void uart_xoff_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)value; (void)param;
+  uart_xon = 0;
+}
+
+static void pump_uart_in(void)
+{
+  if (in_pos == in_len) {
+    in_pos = in_len = 0;
+    ssize_t n = read(pty_master, in_buf, sizeof in_buf);
+    if (n > 0)
+      in_len = (size_t)n;
+  }
+  while (uart_xon && in_pos < in_len)
+    avr_raise_irq(uart_in_irq, in_buf[in_pos++]);
+}
+
+static int open_pty(char *name, size_t len)
+{
+  pty_master = posix_openpt(O_RDWR | O_NOCTTY);
+  if (pty_master < 0 || grantpt(pty_master) || unlockpt(pty_master))
+    return -1;
+  if (ptsname_r(pty_master, name, len))
+    return -1;
+  /* keep the slave open ourselves: the pty survives the host closing and reopening it, and
+     it is raw (no echo, no line editing) before the host configures it */
+  pty_slave = open(name, O_RDWR | O_NOCTTY);
+  if (pty_slave < 0)
+    return -1;
+  struct termios t;
+  tcgetattr(pty_slave, &t);
+  cfmakeraw(&t);
+  cfsetspeed(&t, B57600);
+  tcsetattr(pty_slave, TCSANOW, &t);
+  fcntl(pty_master, F_SETFL, fcntl(pty_master, F_GETFL) | O_NONBLOCK);
+  return 0;
+}
+
+/* ---- LED on pin 13 ------------------------------------------------------------------------ */
+
+static void led_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)param;
+  if (irq->value == value && irq->flags & IRQ_FLAG_INIT)
+    return;
+  printf("pin 13 %u %.1f\n", value ? 1 : 0, sim_ms());
+  fflush(stdout);
+}
+
+/* ---- HC-SR04 ------------------------------------------------------------------------------ */
+
+static avr_cycle_count_t echo_end(avr_t *a, avr_cycle_count_t when, void *param)
+{
+  (void)a; (void)when; (void)param;
+  avr_raise_irq(echo_irq, 0);
+  return 0;
+}
+
+static avr_cycle_count_t echo_start(avr_t *a, avr_cycle_count_t when, void *param)
+{
+  (void)when; (void)param;
+  double us = 2.0 * distance_cm / 100.0 / SOUND_SPEED * 1e6;
+  avr_raise_irq(echo_irq, 1);
+  avr_cycle_timer_register_usec(a, (uint32_t)(us + 0.5), echo_end, NULL);
+  if (!quiet) {
+    printf("echo %.2f %.1f %.1f\n", distance_cm, us, sim_ms());
+    fflush(stdout);
+  }
+  return 0;
+}
+
+static void trig_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  if (value) {
+    trig_rise_cycle = avr->cycle;
+  } else if (trig_rise_cycle && avr->cycle - trig_rise_cycle >= 8 * (F_CPU / 1000000)) {
+    /* a trigger of >= 8 us (the datasheet asks for 10): the module bursts for ~450 us */
+    trig_rise_cycle = 0;
+    avr_cycle_timer_register_usec(avr, 450, echo_start, NULL);
+  }
+}
+
+/* ---- stdin commands ----------------------------------------------------------------------- */
+
+static char cmd_buf[256];
+static size_t cmd_len;
+
+static void handle_command(const char *line)
+{
+  double v;
+  if (sscanf(line, "distance %lf", &v) == 1) {
+    distance_cm = v;
+  } else if (strncmp(line, "quit", 4) == 0) {
+    stop_requested = 1;
+  } else if (line[0]) {
+    fprintf(stderr, "simulate: unknown command '%s' (distance CM | quit)\n", line);
+  }
+}
+
+static void poll_stdin(void)
+{
+  char buf[256];
+  ssize_t n = read(0, buf, sizeof buf);
+  if (n == 0) {           /* stdin closed: keep running, just stop polling it */
+    close(0);
+    return;
+  }
+  for (ssize_t i = 0; i < n; i++) {
+    if (buf[i] == '\n' || cmd_len == sizeof cmd_buf - 1) {
+      cmd_buf[cmd_len] = 0;
+      handle_command(cmd_buf);
+      cmd_len = 0;
+    } else {
+      cmd_buf[cmd_len++] = buf[i];
+    }
+  }
+}
+
+/* simavr's messages go to stderr (stdout is the side channel), warnings and errors only */
+static void quiet_logger(avr_t *a, const int level, const char *format, va_list ap)
+{
+  (void)a;
+  if (level <= LOG_WARNING)
+    vfprintf(stderr, format, ap);
+}
+
+static void usage(void)
+{
+  fprintf(stderr, "usage: simulate ELF [--speed X] [--distance CM] [--quiet]\n");
+  exit(2);
+}
+
+int main(int argc, char **argv)
+{
+  const char *elf = NULL;
+  double speed = 1.0;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--speed") && i + 1 < argc) {
+      speed = atof(argv[++i]);
+    } else if (!strcmp(argv[i], "--distance") && i + 1 < argc) {
+      distance_cm = atof(argv[++i]);
+    } else if (!strcmp(argv[i], "--quiet")) {
+      quiet = 1;
+    } else if (argv[i][0] == '-') {
+      usage();
+    } else if (!elf) {
+      elf = argv[i];
+    } else {
+      usage();
+    }
+  }
+  if (!elf)
+    usage();
+  if (access(elf, R_OK)) {
+    fprintf(stderr, "simulate: %s: %s\n", elf, strerror(errno));
+    return 1;
+  }
+  avr_global_logger_set(quiet_logger);
+  elf_firmware_t fw;
+  memset(&fw, 0, sizeof fw);
+  if (elf_read_firmware(elf, &fw)) {
+    fprintf(stderr, "simulate: %s: not an AVR ELF file\n", elf);
+    return 1;
+  }
+  avr = avr_make_mcu_by_name("atmega2560");
+  if (!avr) {
+    fprintf(stderr, "simulate: simavr has no atmega2560\n");
+    return 1;
+  }
+  avr_init(avr);
+  fw.frequency = F_CPU;
+  avr_load_firmware(avr, &fw);
+  avr->log = 0;
+
+  char name[128];
+  if (open_pty(name, sizeof name)) {
+    perror("simulate: cannot create a pty");
+    return 1;
+  }
+  /* UART0 */
+  uint32_t flags = 0;
+  avr_ioctl(avr, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
+  flags &= ~AVR_UART_FLAG_STDIO;   /* not to simavr's own stdout */
+  avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                          uart_out_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON),
+                          uart_xon_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
+                          uart_xoff_hook, NULL);
+  uart_in_irq = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+  /* pins */
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 7), led_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 5), trig_hook, NULL);
+  echo_irq = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 6);
+
+  signal(SIGINT, on_signal);
+  signal(SIGTERM, on_signal);
+  signal(SIGPIPE, SIG_IGN);
+  fcntl(0, F_SETFL, fcntl(0, F_GETFL) | O_NONBLOCK);
+
+  printf("pty: %s\n", name);
+  fflush(stdout);
+
+  const double t0 = now_s();
+  int state = cpu_Running;
+  uint64_t next_check = 0;
+  while (!stop_requested) {
+    state = avr_run(avr);
+    if (state == cpu_Done || state == cpu_Crashed)
+      break;
+    if (avr->cycle < next_check)
+      continue;
+    next_check = avr->cycle + F_CPU / 2000;   /* every 0.5 ms of simulated time */
+    pump_uart_in();
+    poll_stdin();
+    if (speed > 0) {
+      double ahead = avr->cycle / (double)F_CPU / speed - (now_s() - t0);
+      if (ahead > 0.001) {
+        struct pollfd p = {pty_master, POLLIN, 0};
+        poll(&p, 1, (int)(ahead * 1000));
+      }
+    }
+  }
+  const double wall = now_s() - t0;
+  fprintf(stderr, "speed: %.2f x real time (%llu cycles in %.2f s)\n",
+          wall > 0 ? avr->cycle / (double)F_CPU / wall : 0.0,
+          (unsigned long long)avr->cycle, wall);
+  if (state == cpu_Crashed) {
+    fprintf(stderr, "simulate: the MCU crashed at pc 0x%x\n", avr->pc);
+    return 3;
+  }
+  return 0;
+}
