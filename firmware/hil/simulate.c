@@ -12,6 +12,8 @@
  *     stdin command "distance CM"); each echo is reported as "echo <cm> <us> <ms>"
  * Side channel: stdout lines (events, flushed) and stdin commands, one a line:
  *   distance CM      set the ultrasonic distance (cm)
+ *   garbage N        write N pseudo-random bytes to the host (fault injection)
+ *   reset            reset the MCU (fault injection; the sketch starts over)
  *   quit             stop
  * Time: simulated time is paced to the wall clock times --speed (1 = real time, default;
  * 0 = as fast as possible). On exit, stderr gets "speed: R x real time (N cycles in S s)".
@@ -174,10 +176,26 @@ static void handle_command(const char *line)
   double v;
   if (sscanf(line, "distance %lf", &v) == 1) {
     distance_cm = v;
+  } else if (sscanf(line, "garbage %lf", &v) == 1) {
+    /* fault injection: v pseudo-random bytes on the line to the host */
+    unsigned seed = (unsigned)avr->cycle;
+    for (int i = 0; i < (int)v; i++) {
+      unsigned char b = (unsigned char)(rand_r(&seed) >> 7);
+      if (write(pty_master, &b, 1) < 0)
+        break;
+    }
+    printf("garbage %d %.1f\n", (int)v, sim_ms());
+    fflush(stdout);
+  } else if (strncmp(line, "reset", 5) == 0) {
+    /* fault injection: the MCU resets (as by its reset button); the sketch starts over */
+    avr_reset(avr);
+    in_pos = in_len = 0;
+    printf("reset %.1f\n", sim_ms());
+    fflush(stdout);
   } else if (strncmp(line, "quit", 4) == 0) {
     stop_requested = 1;
   } else if (line[0]) {
-    fprintf(stderr, "simulate: unknown command '%s' (distance CM | quit)\n", line);
+    fprintf(stderr, "simulate: unknown command '%s' (distance CM | garbage N | reset | quit)\n", line);
   }
 }
 
