@@ -206,12 +206,13 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
                       % f.name,
                       '      offset += 4;',
                       '      if (%s_lengthT > %s_length)' % (f.name, f.name),
-                      '        this->%s = (_%s_type*)realloc(this->%s, %s_lengthT * sizeof(_%s_type));'
+                      '        this->%s = (_%s_type*)realloc((void*)this->%s, %s_lengthT * sizeof(_%s_type));'
                       % (f.name, f.name, f.name, f.name, f.name),
                       '      %s_length = %s_lengthT;' % (f.name, f.name),
                       '      for (uint32_t i = 0; i < %s_length; i++) {' % f.name]
             lines += _indent(_deser_value('this->st_%s' % f.name, f), 8)
-            lines += ['        memcpy(&(this->%s[i]), &(this->st_%s), sizeof(_%s_type));'
+            # a bytewise copy, vtable pointer included: elements live in realloc'd memory
+            lines += ['        memcpy((void*)&(this->%s[i]), (const void*)&(this->st_%s), sizeof(_%s_type));'
                       % (f.name, f.name, f.name), '      }']
         elif f.is_array:
             lines.append('      for (uint32_t i = 0; i < %d; i++) {' % f.array_len)

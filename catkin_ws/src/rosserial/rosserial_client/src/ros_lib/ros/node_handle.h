@@ -372,17 +372,20 @@ public:
       return 0;
     int l = msg->serializedLength();
     if (l > OUTPUT_SIZE - 8)
-    {
-      logerror("Message from device dropped: message larger than buffer.");
-      return -1;
-    }
+      return dropped(id);
     l = msg->serialize(message_out + 7);
     if (l > OUTPUT_SIZE - 8)  // a hand-written message without serializedLength()
-    {
-      logerror("Message from device dropped: message larger than buffer.");
-      return -1;
-    }
+      return dropped(id);
     return writeFrame(id, l);
+  }
+
+private:
+  int dropped(int id)
+  {
+    // (a log message too large for the buffer is dropped silently: no recursion)
+    if (id != rosserial_msgs::TopicInfo::ID_LOG)
+      logerror("Message from device dropped: message larger than buffer.");
+    return -1;
   }
 
 private:
