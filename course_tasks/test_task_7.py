@@ -33,7 +33,9 @@ def sketchbook(tmp_path_factory):
     return book
 
 
-@pytest.mark.parametrize('sketch', ['hello_world', 'blink', 'ultrasound'])
+@pytest.mark.parametrize('sketch', ['hello_world',
+                                    pytest.param('blink', marks=pytest.mark.full),
+                                    pytest.param('ultrasound', marks=pytest.mark.full)])
 def test_starter_builds_for_the_mega(sketchbook, sketch):
     out = sketchbook / ('build_' + sketch)
     p = subprocess.run([BUILD, str(sketchbook / sketch), '--ros-lib',

@@ -271,6 +271,7 @@ int main(int argc, char **argv)
   }
   avr_init(avr);
   fw.frequency = F_CPU;
+  fw.vcc = fw.avcc = fw.aref = 5000;   /* mV: a USB-powered Mega; analog inputs read 0 */
   avr_load_firmware(avr, &fw);
   avr->log = 0;
 

@@ -26,17 +26,17 @@ def core(tmp_path_factory):
 
 @pytest.fixture(scope='module')
 def elves():
-    return {s: harness.build(s) for s in ('hello_world', 'blink', 'ultrasound')}
+    return {s: harness.build(s) for s in ('hello_world', 'blink', 'ultrasound', 'adc_service')}
 
 
 class Bridge(object):
     """A sketch in the simulator + serial_node.py on its pty."""
 
-    def __init__(self, core, elf, tmp_path, *sim_args):
+    def __init__(self, core, elf, tmp_path, *sim_args, node_args=()):
         self.core = core
         self.sim = harness.Simulation(elf, *sim_args)
-        self.node = Proc(['rosrun', 'rosserial_python', 'serial_node.py', self.sim.pty],
-                         env=core.env, log=str(tmp_path / 'serial_node.log'))
+        self.node = Proc(['rosrun', 'rosserial_python', 'serial_node.py', self.sim.pty]
+                         + list(node_args), env=core.env, log=str(tmp_path / 'serial_node.log'))
 
     def wait_log(self, text, timeout=90):
         wait_for(lambda: text in self.node.output(), timeout,
@@ -57,8 +57,8 @@ class Bridge(object):
 def bridge(core, tmp_path):
     made = []
 
-    def make(elf, *args):
-        b = Bridge(core, elf, tmp_path, *args)
+    def make(elf, *args, **kw):
+        b = Bridge(core, elf, tmp_path, *args, **kw)
         made.append(b)
         return b
     yield make
@@ -81,6 +81,7 @@ def test_hello_world_chatter_survives_garbage_and_reset(bridge, elves):
     assert 'data: "hello world!"' in b.echo('/chatter')
 
 
+@pytest.mark.full   # gate budget: hello_world, ultrasound and adc_service run in make test
 def test_blink_toggles_the_led(bridge, elves, core):
     b = bridge(elves['blink'])
     b.wait_log('Setup subscriber on toggle_led [std_msgs/Empty]')
@@ -113,3 +114,17 @@ def test_ultrasound_range_follows_the_echo(bridge, elves):
             break
     else:
         pytest.fail('range never followed the new distance of 1.50 m (last %.3f)' % r)
+
+
+def test_workspace_message_parameter_and_device_service(bridge, elves, core):
+    """rosserial_arduino/Adc comes from a workspace package; ~adc_offset is serial_node's
+    private parameter read by getParam(); test_srv is served by the device."""
+    b = bridge(elves['adc_service'], node_args=['_adc_offset:=7'])
+    b.wait_log('Setup publisher on adc [rosserial_arduino/Adc]')
+    b.wait_log('Setup service server on test_srv [rosserial_arduino/Test]')
+    out = b.echo('/adc', n=2)     # the first may precede the parameter reply
+    assert 'adc5: 7' in out, out  # unconnected analog inputs read 0 in the simulator
+    p = subprocess.run(['rosservice', 'call', '/test_srv', 'input: "rosserial"'],
+                       env=core.env, capture_output=True, text=True, timeout=90)
+    assert p.returncode == 0, p.stderr
+    assert 'output: "lairessor"' in p.stdout, p.stdout

@@ -6,6 +6,8 @@ import subprocess
 import sys
 import time
 
+import pytest
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from fake_device import EMPTY_MD5, STRING_MD5, FakeDevice  # noqa: E402
 
@@ -16,6 +18,7 @@ ANNOUNCE = [(p.ID_PUBLISHER, p.TopicInfo(125, 'chatter', 'std_msgs/String', STRI
             (p.ID_SUBSCRIBER, p.TopicInfo(100, 'toggle_led', 'std_msgs/Empty', EMPTY_MD5, 512))]
 
 
+@pytest.mark.full   # ~20-50 s; the gate runs serial_node against the emulated Mega instead
 def test_serial_node_bridges_a_pty_device(roscore, tmp_path):
     dev = FakeDevice(ANNOUNCE)
     log = str(tmp_path / 'serial_node.log')
