@@ -25,9 +25,12 @@ class Simulation(object):
     (e.g. 'pin 13 1 1234.5'); command() writes to its stdin."""
 
     def __init__(self, elf, *args, env=None, timeout=30.0):
+        import tempfile
+        # stderr to a file, never a pipe nobody reads: a full pipe would stall the simulator
+        self._err = tempfile.TemporaryFile(mode='w+')
         self.proc = subprocess.Popen([os.path.join(FIRMWARE, 'simulate'), elf] + list(args),
                                      stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                                     stderr=subprocess.PIPE, text=True, env=env,
+                                     stderr=self._err, text=True, env=env,
                                      start_new_session=True)
         self.lines = queue.Queue()
         self.events = []
@@ -36,7 +39,7 @@ class Simulation(object):
         if not first.startswith('pty: '):
             self.stop()
             raise RuntimeError('firmware/simulate did not print its pty: %r %s'
-                               % (first, self.stderr))
+                               % (first, self.stop()))
         self.pty = first.split(' ', 1)[1].strip()
         self.stderr = ''
         self.reader = threading.Thread(target=self._read, daemon=True)
@@ -77,10 +80,12 @@ class Simulation(object):
                 self.proc.kill()
                 self.proc.wait()
         try:
-            self.stderr = self.proc.stderr.read()
+            self._err.seek(0)
+            self.stderr = self._err.read()[-2000:]
+            self._err.close()
         except ValueError:
             pass
-        for f in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
+        for f in (self.proc.stdin, self.proc.stdout):
             try:
                 f.close()
             except Exception:

@@ -10,8 +10,14 @@
  *   - an HC-SR04 with TRIG on pin 11 (PB5) and ECHO on pin 12 (PB6): a trigger pulse is
  *     answered with an echo pulse of 2*distance/343 m/s (distance set by --distance or by the
  *     stdin command "distance CM"); each echo is reported as "echo <cm> <us> <ms>"
+ *   - the space scanner's drive (sketches/space_scanner_base): an L298N (ENA 4, IN1 5, IN2 6,
+ *     IN3 7, IN4 8, ENB 9) driving two gear motors (15 rad/s at full duty, 80 ms time constant,
+ *     minus the load set by "load L R"), LM393 encoders with 40 edges a wheel turn on pins 2
+ *     and 3, an MPU6050 at 0x68 on TWI (level, still, gyro z = the drive's yaw rate);
+ *     every 100 ms while a wheel turns: "motor <wL> <wR> <dutyL> <dutyR> <ms>" (rad/s, -1..1)
  * Side channel: stdout lines (events, flushed) and stdin commands, one a line:
  *   distance CM      set the ultrasonic distance (cm)
+ *   load L R         load on the left/right wheel, 0..1 of the motor's torque
  *   garbage N        write N pseudo-random bytes to the host (fault injection)
  *   reset            reset the MCU (fault injection; the sketch starts over)
  *   quit             stop
@@ -31,7 +37,10 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <math.h>
+
 #include <simavr/avr_ioport.h>
+#include <simavr/avr_twi.h>
 #include <simavr/avr_uart.h>
 #include <simavr/sim_avr.h>
 #include <simavr/sim_elf.h>
@@ -88,6 +97,18 @@ static void uart_xoff_hook(struct avr_irq_t *irq, uint32_t value, void *param)
   uart_xon = 0;
 }
 
+static uint64_t next_in_cycle, xoff_since;
+
+/* cycles one byte takes on the line (10 bits) at the baud rate the firmware set (UBRR0, U2X0) */
+static uint64_t byte_cycles(void)
+{
+  unsigned ubrr = avr->data[0xC4] | ((avr->data[0xC5] & 0x0F) << 8);
+  unsigned div = (avr->data[0xC0] & 0x02) ? 8 : 16;
+  return 10ULL * div * (ubrr + 1);
+}
+
+/* Host bytes go in at the line's pace, never faster than the MCU's UART could receive them,
+   and not while simavr's UART input FIFO signals XOFF (a lost XON is forgiven after 5 ms). */
 static void pump_uart_in(void)
 {
   if (in_pos == in_len) {
@@ -96,8 +117,18 @@ static void pump_uart_in(void)
     if (n > 0)
       in_len = (size_t)n;
   }
-  while (uart_xon && in_pos < in_len)
+  if (!uart_xon) {
+    if (!xoff_since)
+      xoff_since = avr->cycle;
+    if (avr->cycle - xoff_since < F_CPU / 200)
+      return;
+    uart_xon = 1;
+  }
+  xoff_since = 0;
+  while (uart_xon && in_pos < in_len && avr->cycle >= next_in_cycle) {
     avr_raise_irq(uart_in_irq, in_buf[in_pos++]);
+    next_in_cycle = (next_in_cycle > avr->cycle ? next_in_cycle : avr->cycle) + byte_cycles();
+  }
 }
 
 static int open_pty(char *name, size_t len)
@@ -166,6 +197,138 @@ static void trig_hook(struct avr_irq_t *irq, uint32_t value, void *param)
   }
 }
 
+
+/* ---- the space scanner's drive: L298N, gear motors, LM393 encoders, MPU6050 ------------- */
+/* ENA pin 4 = OC0B (PG5), IN1 5 = PE3, IN2 6 = PH3, IN3 7 = PH4, IN4 8 = PH5, ENB 9 = OC2B (PH6);
+   encoders: left pin 2 = PE4 (INT4), right pin 3 = PE5 (INT5); MPU6050 at 0x68 on TWI. */
+#define REG_PINE 0x2C
+#define REG_PORTE 0x2E
+#define REG_PORTG 0x34
+#define REG_TCCR0A 0x44
+#define REG_OCR0B 0x48
+#define REG_TCCR2A 0xB0
+#define REG_OCR2B 0xB4
+#define REG_PORTH 0x102
+#define WHEEL_MAX 15.0        /* rad/s at full duty, no load (12 V 120 rpm motor on a 14.8 V pack) */
+#define MOTOR_TAU 0.08        /* s, speed time constant of motor + gearbox + wheel */
+#define EDGES_PER_REV 40.0    /* 20-slot disc, both edges */
+#define WHEEL_RADIUS 0.0325
+#define TRACK 0.182
+
+typedef struct wheel_t {
+  double w;       /* rad/s, signed */
+  double angle;   /* rad, for the encoder */
+  double load;    /* 0..1: fraction of the torque taken by the load */
+  int level;
+  avr_irq_t *enc;
+  const char *name;
+} wheel_t;
+static wheel_t wheels[2] = {{0, 0, 0, 0, NULL, "left"}, {0, 0, 0, 0, NULL, "right"}};
+static uint64_t drive_last_cycle;
+static double drive_next_report_ms;
+
+static int bit(uint16_t reg, int b) { return (avr->data[reg] >> b) & 1; }
+
+static double duty(int ch)   /* L298N enable input as a duty cycle 0..1 */
+{
+  if (ch == 0)
+    return bit(REG_TCCR0A, 5) ? avr->data[REG_OCR0B] / 255.0 : bit(REG_PORTG, 5);
+  return bit(REG_TCCR2A, 5) ? avr->data[REG_OCR2B] / 255.0 : bit(REG_PORTH, 6);
+}
+
+static int bridge(int ch)    /* +1 forward, -1 reverse, 0 brake/free */
+{
+  int a = ch == 0 ? bit(REG_PORTE, 3) : bit(REG_PORTH, 4);
+  int b = ch == 0 ? bit(REG_PORTH, 3) : bit(REG_PORTH, 5);
+  return a == b ? 0 : (a ? 1 : -1);
+}
+
+static void drive_step(void)
+{
+  double dt = (avr->cycle - drive_last_cycle) / (double)F_CPU;
+  drive_last_cycle = avr->cycle;
+  if (dt <= 0)
+    return;
+  for (int ch = 0; ch < 2; ch++) {
+    wheel_t *w = &wheels[ch];
+    double target = bridge(ch) * duty(ch) * WHEEL_MAX * (1.0 - w->load);
+    w->w += (target - w->w) * (1.0 - exp(-dt / MOTOR_TAU));
+    w->angle += fabs(w->w) * dt;
+    double edge = 2 * M_PI / EDGES_PER_REV;
+    while (w->angle >= edge) {          /* the slotted disc: one pin change per edge */
+      w->angle -= edge;
+      w->level = !w->level;
+      avr_raise_irq(w->enc, w->level);
+    }
+  }
+  if (sim_ms() >= drive_next_report_ms && (wheels[0].w != 0 || wheels[1].w != 0)) {
+    drive_next_report_ms = sim_ms() + 100;
+    printf("motor %.3f %.3f %.3f %.3f %.1f\n", wheels[0].w, wheels[1].w,
+           bridge(0) * duty(0), bridge(1) * duty(1), sim_ms());
+    fflush(stdout);
+  }
+}
+
+static uint8_t mpu_regs[128];
+static uint8_t mpu_selected, mpu_ptr, mpu_first;
+static avr_irq_t *twi_in;
+
+static void mpu_put16(int reg, double v)
+{
+  if (v > 32767) v = 32767;
+  if (v < -32768) v = -32768;
+  int16_t x = (int16_t)lrint(v);
+  mpu_regs[reg] = (uint8_t)((uint16_t)x >> 8);
+  mpu_regs[reg + 1] = (uint8_t)(x & 0xFF);
+}
+
+static void mpu_update(void)
+{
+  double yaw_rate = WHEEL_RADIUS * (wheels[1].w - wheels[0].w) / TRACK;   /* rad/s */
+  mpu_put16(0x3B, 0);                 /* accel x, y, z: level and still: 1 g on z */
+  mpu_put16(0x3D, 0);
+  mpu_put16(0x3F, 16384);
+  mpu_put16(0x41, (25.0 - 36.53) * 340.0);   /* 25 degrees C */
+  mpu_put16(0x43, 0);
+  mpu_put16(0x45, 0);
+  mpu_put16(0x47, yaw_rate * 180.0 / M_PI * 131.0);
+  mpu_regs[0x75] = 0x68;              /* WHO_AM_I */
+}
+
+static void twi_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  avr_twi_msg_irq_t v;
+  v.u.v = value;
+  if (v.u.twi.msg & TWI_COND_STOP)
+    mpu_selected = 0;
+  if (v.u.twi.msg & TWI_COND_START) {
+    mpu_selected = 0;
+    if ((v.u.twi.addr >> 1) == 0x68) {
+      mpu_selected = v.u.twi.addr;
+      mpu_first = 1;
+      mpu_update();
+      avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_ACK, mpu_selected, 1));
+    }
+  }
+  if (!mpu_selected)
+    return;
+  if (v.u.twi.msg & TWI_COND_WRITE) {
+    avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_ACK, mpu_selected, 1));
+    if (mpu_first) {
+      mpu_ptr = v.u.twi.data & 0x7F;
+      mpu_first = 0;
+    } else {
+      mpu_regs[mpu_ptr & 0x7F] = v.u.twi.data;
+      mpu_ptr++;
+    }
+  }
+  if (v.u.twi.msg & TWI_COND_READ) {
+    avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_READ, mpu_selected, mpu_regs[mpu_ptr & 0x7F]));
+    mpu_ptr++;
+  }
+}
+
 /* ---- stdin commands ----------------------------------------------------------------------- */
 
 static char cmd_buf[256];
@@ -173,7 +336,7 @@ static size_t cmd_len;
 
 static void handle_command(const char *line)
 {
-  double v;
+  double v, v2;
   if (sscanf(line, "distance %lf", &v) == 1) {
     distance_cm = v;
   } else if (sscanf(line, "garbage %lf", &v) == 1) {
@@ -192,10 +355,13 @@ static void handle_command(const char *line)
     in_pos = in_len = 0;
     printf("reset %.1f\n", sim_ms());
     fflush(stdout);
+  } else if (sscanf(line, "load %lf %lf", &v, &v2) == 2) {
+    wheels[0].load = v;
+    wheels[1].load = v2;
   } else if (strncmp(line, "quit", 4) == 0) {
     stop_requested = 1;
   } else if (line[0]) {
-    fprintf(stderr, "simulate: unknown command '%s' (distance CM | garbage N | reset | quit)\n", line);
+    fprintf(stderr, "simulate: unknown command '%s' (distance CM | load L R | garbage N | reset | quit)\n", line);
   }
 }
 
@@ -218,11 +384,12 @@ static void poll_stdin(void)
   }
 }
 
-/* simavr's messages go to stderr (stdout is the side channel), warnings and errors only */
+/* simavr's messages go to stderr (stdout is the side channel), errors only (its timer
+   warnings about Arduino's phase-correct PWM set-up would flood it) */
 static void quiet_logger(avr_t *a, const int level, const char *format, va_list ap)
 {
   (void)a;
-  if (level <= LOG_WARNING)
+  if (level <= LOG_ERROR)
     vfprintf(stderr, format, ap);
 }
 
@@ -296,6 +463,12 @@ int main(int argc, char **argv)
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 7), led_hook, NULL);
   avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 5), trig_hook, NULL);
   echo_irq = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 6);
+  wheels[0].enc = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('E'), 4);
+  wheels[1].enc = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('E'), 5);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_OUTPUT), twi_hook,
+                          NULL);
+  twi_in = avr_io_getirq(avr, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_INPUT);
+  mpu_update();
 
   signal(SIGINT, on_signal);
   signal(SIGTERM, on_signal);
@@ -307,16 +480,20 @@ int main(int argc, char **argv)
 
   const double t0 = now_s();
   int state = cpu_Running;
-  uint64_t next_check = 0;
+  uint64_t next_check = 0, next_uart = 0;
   while (!stop_requested) {
     state = avr_run(avr);
     if (state == cpu_Done || state == cpu_Crashed)
       break;
+    if (avr->cycle >= next_uart && (in_pos < in_len || avr->cycle >= next_check)) {
+      next_uart = avr->cycle + F_CPU / 20000;   /* queued host bytes: every 50 us */
+      pump_uart_in();
+    }
     if (avr->cycle < next_check)
       continue;
-    next_check = avr->cycle + F_CPU / 2000;   /* every 0.5 ms of simulated time */
-    pump_uart_in();
+    next_check = avr->cycle + F_CPU / 2000;   /* everything else every 0.5 ms */
     poll_stdin();
+    drive_step();
     if (speed > 0) {
       double ahead = avr->cycle / (double)F_CPU / speed - (now_s() - t0);
       if (ahead > 0.001) {

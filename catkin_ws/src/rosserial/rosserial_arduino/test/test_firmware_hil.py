@@ -43,8 +43,13 @@ class Bridge(object):
                  what='"%s" in the serial_node log:\n%s' % (text, self.node.output()[-3000:]))
 
     def echo(self, topic, n=1, timeout=90):
-        p = subprocess.run(['rostopic', 'echo', '-n', str(n), topic], env=self.core.env,
-                           capture_output=True, text=True, timeout=timeout)
+        try:
+            p = subprocess.run(['rostopic', 'echo', '-n', str(n), topic], env=self.core.env,
+                               capture_output=True, text=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            raise AssertionError('no %d message(s) on %s within %d s; serial_node log:\n%s\n'
+                                 'simulator: %s' % (n, topic, timeout, self.node.output()[-3000:],
+                                                    self.sim.events[-5:]))
         assert p.returncode == 0, p.stderr
         return p.stdout
 
@@ -128,3 +133,33 @@ def test_workspace_message_parameter_and_device_service(bridge, elves, core):
                        env=core.env, capture_output=True, text=True, timeout=90)
     assert p.returncode == 0, p.stderr
     assert 'output: "lairessor"' in p.stdout, p.stdout
+
+
+def _floats(text):
+    return [float(x) for x in re.findall(r'^data: ([-0-9.e]+)$', text, re.M)]
+
+
+@pytest.mark.full   # ~60 s: the diploma's base firmware end to end
+def test_space_scanner_base_reaches_the_commanded_wheel_speeds(bridge, core):
+    """motor_*_cmd (whole rad/s) → PID → L298N → motor and encoder models → measured speeds on
+    motor_*_vel within 5 % of the set-points; the IMU over TWI publishes imu/data_raw."""
+    elf = harness.build('space_scanner_base')
+    b = bridge(elf)
+    b.wait_log('Setup subscriber on motor_right_cmd [std_msgs/Int32]')
+    pubs = [Proc(['rostopic', 'pub', '-r', '5', '/motor_left_cmd', 'std_msgs/Int32', 'data: 8'],
+                 env=core.env),
+            Proc(['rostopic', 'pub', '-r', '5', '/motor_right_cmd', 'std_msgs/Int32',
+                  'data: -6'], env=core.env)]
+    try:
+        b.sim.wait_event('motor', count=20, timeout=120)   # 2 simulated seconds of driving
+        left = _floats(b.echo('/motor_left_vel', n=5))
+        right = _floats(b.echo('/motor_right_vel', n=5))
+    finally:
+        for p in pubs:
+            p.stop()
+    assert all(abs(v - 8.0) <= 0.4 for v in left), left
+    assert all(abs(v + 6.0) <= 0.3 for v in right), right
+    wl, wr = [float(x) for x in b.sim.events_starting('motor')[-1].split()[1:3]]
+    assert abs(wl - 8.0) <= 0.4 and abs(wr + 6.0) <= 0.3, (wl, wr)
+    imu = b.echo('/imu/data_raw')
+    assert 'frame_id: "imu_link"' in imu and re.search(r'z: 9\.80', imu), imu
