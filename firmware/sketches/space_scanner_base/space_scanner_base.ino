@@ -19,26 +19,46 @@
 const uint8_t ENC_LEFT_PIN = 2, ENC_RIGHT_PIN = 3;
 const uint8_t ENA = 4, IN1 = 5, IN2 = 6, IN3 = 7, IN4 = 8, ENB = 9;
 const float EDGES_PER_REV = 40.0;          // 20-slot disc, both edges (CHANGE)
-const unsigned long SPEED_PERIOD_MS = 20;  // speed measured over 20 ms windows
+const unsigned long SPEED_PERIOD_MS = 50;  // speed updated every 50 ms
 const uint8_t MPU_ADDR = 0x68;
 
 class Encoder
 {
 public:
-  explicit Encoder(uint8_t pin) : pin(pin), edges(0), last_edges(0), last_ms(0), vel(0), prev_raw(-1) {}
-  void edge() { edges++; }
-  // speed in rad/s over the last window; the sign follows the commanded direction
+  explicit Encoder(uint8_t pin)
+    : pin(pin), edges(0), edge_us(0), last_edges(0), last_edge_us(0), last_ms(0), vel(0),
+      prev_raw(-1) {}
+  void edge()   // interrupt: count the edge and remember when it came
+  {
+    edges++;
+    edge_us = micros();
+  }
+  // Speed in rad/s from the edges of the last window and the time between the window's last
+  // edge and the previous window's last edge (exact at constant speed, unlike counting edges
+  // in a fixed window). The sign follows the commanded direction (one-channel encoder).
   void checkVel(int direction)
   {
     unsigned long now = millis();
     if (now - last_ms < SPEED_PERIOD_MS)
       return;
+    last_ms = now;
     noInterrupts();
     long e = edges;
+    unsigned long t = edge_us;
     interrupts();
-    float raw = (e - last_edges) / EDGES_PER_REV * 2.0 * PI * 1000.0 / (now - last_ms);
-    last_edges = e;
-    last_ms = now;
+    float raw;
+    if (e == last_edges)
+    {
+      if (micros() - last_edge_us < 200000UL)
+        return;                         // slow: keep the last value up to 200 ms
+      raw = 0;
+    }
+    else
+    {
+      raw = (e - last_edges) * (2.0 * PI / EDGES_PER_REV) * 1e6 / (float)(t - last_edge_us);
+      last_edges = e;
+      last_edge_us = t;
+    }
     if (raw != 0 && raw == prev_raw)   // glitch filter: a repeated reading is skipped
     {
       prev_raw = -1;
@@ -52,7 +72,9 @@ public:
 
 private:
   volatile long edges;
+  volatile unsigned long edge_us;
   long last_edges;
+  unsigned long last_edge_us;
   unsigned long last_ms;
   float vel;
   float prev_raw;
@@ -89,7 +111,7 @@ private:
 class Pid
 {
 public:
-  Pid(float kp, float ki, float kd) : kp(kp), ki(ki), kd(kd), integral(0), last_error(0), ff(12.0) {}
+  Pid(float kp, float ki, float kd) : kp(kp), ki(ki), kd(kd), integral(0), last_error(0), ff(17.0) {}
   // set-point and measurement in rad/s, dt in s; returns the PWM duty (-255..255)
   int control(float setpoint, float measured, float dt)
   {
@@ -176,7 +198,7 @@ ros::Subscriber<std_msgs::Int32> rightWheelSubscriber("motor_right_cmd", &rightW
 
 Encoder encL(ENC_LEFT_PIN), encR(ENC_RIGHT_PIN);
 Motor motorL(ENA, IN1, IN2), motorR(ENB, IN3, IN4);
-Pid leftPID(8.0, 40.0, 0.0), rightPID(8.0, 40.0, 0.0);
+Pid leftPID(3.0, 15.0, 0.0), rightPID(3.0, 15.0, 0.0);
 char imu_frame[] = "imu_link";
 
 void encL_update() { encL.edge(); }
