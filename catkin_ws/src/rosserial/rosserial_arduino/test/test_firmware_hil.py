@@ -1,0 +1,166 @@
+"""Practical work 7 on the emulated Arduino Mega: firmware/ sketches built with Debian's avr-gcc
+and our ros_lib, run in simavr (firmware/simulate), bridged by serial_node.py on the pty.
+One roscore for the module; each sketch built once per session (cached in build/firmware)."""
+import os
+import re
+import subprocess
+import sys
+import time
+
+import pytest
+
+from course_testing import Proc, RosCore, wait_for
+
+REPO = os.path.abspath(os.path.join(os.path.dirname(__file__), *['..'] * 5))
+sys.path.insert(0, os.path.join(REPO, 'firmware', 'hil'))
+import harness  # noqa: E402
+
+
+@pytest.fixture(scope='module')
+def core(tmp_path_factory):
+    c = RosCore(log_dir=str(tmp_path_factory.mktemp('ros_log')))
+    c.start()
+    yield c
+    c.stop()
+
+
+@pytest.fixture(scope='module')
+def elves():
+    return {s: harness.build(s) for s in ('hello_world', 'blink', 'ultrasound', 'adc_service')}
+
+
+class Bridge(object):
+    """A sketch in the simulator + serial_node.py on its pty."""
+
+    def __init__(self, core, elf, tmp_path, *sim_args, node_args=()):
+        self.core = core
+        self.sim = harness.Simulation(elf, *sim_args)
+        self.node = Proc(['rosrun', 'rosserial_python', 'serial_node.py', self.sim.pty]
+                         + list(node_args), env=core.env, log=str(tmp_path / 'serial_node.log'))
+
+    def wait_log(self, text, timeout=90):
+        wait_for(lambda: text in self.node.output(), timeout,
+                 what='"%s" in the serial_node log:\n%s' % (text, self.node.output()[-3000:]))
+
+    def echo(self, topic, n=1, timeout=90):
+        try:
+            p = subprocess.run(['rostopic', 'echo', '-n', str(n), topic], env=self.core.env,
+                               capture_output=True, text=True, timeout=timeout)
+        except subprocess.TimeoutExpired:
+            raise AssertionError('no %d message(s) on %s within %d s; serial_node log:\n%s\n'
+                                 'simulator: %s' % (n, topic, timeout, self.node.output()[-3000:],
+                                                    self.sim.events[-5:]))
+        assert p.returncode == 0, p.stderr
+        return p.stdout
+
+    def close(self):
+        self.node.stop()
+        return self.sim.stop()
+
+
+@pytest.fixture
+def bridge(core, tmp_path):
+    made = []
+
+    def make(elf, *args, **kw):
+        b = Bridge(core, elf, tmp_path, *args, **kw)
+        made.append(b)
+        return b
+    yield make
+    for b in made:
+        sys.stderr.write('simulator: %s\n' % b.close())
+
+
+def test_hello_world_chatter_survives_garbage_and_reset(bridge, elves):
+    b = bridge(elves['hello_world'])
+    b.wait_log('Setup publisher on chatter [std_msgs/String]')
+    assert 'data: "hello world!"' in b.echo('/chatter')
+    # faults: garbage on the line, then the MCU resets; chatter comes back without a restart
+    b.sim.command('garbage 300')
+    b.sim.wait_event('garbage')
+    b.sim.command('reset')
+    b.sim.wait_event('reset')
+    before = b.node.output().count('Setup publisher on chatter')
+    wait_for(lambda: b.node.output().count('Setup publisher on chatter') > before, 90,
+             what='renegotiation after the reset:\n' + b.node.output()[-3000:])
+    assert 'data: "hello world!"' in b.echo('/chatter')
+
+
+@pytest.mark.full   # gate budget: hello_world, ultrasound and adc_service run in make test
+def test_blink_toggles_the_led(bridge, elves, core):
+    b = bridge(elves['blink'])
+    b.wait_log('Setup subscriber on toggle_led [std_msgs/Empty]')
+    pub = Proc(['rostopic', 'pub', '-r', '2', '/toggle_led', 'std_msgs/Empty'], env=core.env)
+    try:
+        # pinMode() reports the initial 0; then each message toggles: on, off
+        events = b.sim.wait_event('pin 13', count=3, timeout=90)
+    finally:
+        pub.stop()
+    levels = [e.split()[2] for e in events]
+    assert levels[:3] == ['0', '1', '0'], events
+
+
+def _ranges(text):
+    return [float(x) for x in re.findall(r'^range: ([-0-9.e]+)$', text, re.M)]
+
+
+def test_ultrasound_range_follows_the_echo(bridge, elves):
+    b = bridge(elves['ultrasound'], '--distance', '42')
+    b.wait_log('Setup publisher on ultrasound [sensor_msgs/Range]')
+    out = b.echo('/ultrasound')
+    assert 'frame_id: "ultrasound"' in out
+    (r,) = _ranges(out)
+    assert abs(r - 0.42) < 0.01, out
+    b.sim.command('distance 150')
+    deadline = time.monotonic() + 90
+    while time.monotonic() < deadline:
+        (r,) = _ranges(b.echo('/ultrasound'))
+        if abs(r - 1.50) < 0.01:
+            break
+    else:
+        pytest.fail('range never followed the new distance of 1.50 m (last %.3f)' % r)
+
+
+def test_workspace_message_parameter_and_device_service(bridge, elves, core):
+    """rosserial_arduino/Adc comes from a workspace package; ~adc_offset is serial_node's
+    private parameter read by getParam(); test_srv is served by the device."""
+    b = bridge(elves['adc_service'], node_args=['_adc_offset:=7'])
+    b.wait_log('Setup publisher on adc [rosserial_arduino/Adc]')
+    b.wait_log('Setup service server on test_srv [rosserial_arduino/Test]')
+    out = b.echo('/adc', n=2)     # the first may precede the parameter reply
+    assert 'adc5: 7' in out, out  # unconnected analog inputs read 0 in the simulator
+    p = subprocess.run(['rosservice', 'call', '/test_srv', 'input: "rosserial"'],
+                       env=core.env, capture_output=True, text=True, timeout=90)
+    assert p.returncode == 0, p.stderr
+    assert 'output: "lairessor"' in p.stdout, p.stdout
+
+
+def _floats(text):
+    return [float(x) for x in re.findall(r'^data: ([-0-9.e]+)$', text, re.M)]
+
+
+@pytest.mark.full   # ~60 s: the diploma's base firmware end to end
+def test_space_scanner_base_reaches_the_commanded_wheel_speeds(bridge, core):
+    """motor_*_cmd (whole rad/s) → PID → L298N → motor and encoder models → measured speeds on
+    motor_*_vel within 5 % of the set-points; the IMU over TWI publishes imu/data_raw."""
+    elf = harness.build('space_scanner_base')
+    b = bridge(elf)
+    b.wait_log('Setup subscriber on motor_right_cmd [std_msgs/Int32]')
+    pubs = [Proc(['rostopic', 'pub', '-r', '5', '/motor_left_cmd', 'std_msgs/Int32', 'data: 8'],
+                 env=core.env),
+            Proc(['rostopic', 'pub', '-r', '5', '/motor_right_cmd', 'std_msgs/Int32',
+                  'data: -6'], env=core.env)]
+    try:
+        b.sim.wait_event('motor', count=20, timeout=120)   # 2 simulated seconds of driving
+        left = _floats(b.echo('/motor_left_vel', n=10))
+        right = _floats(b.echo('/motor_right_vel', n=10))
+    finally:
+        for p in pubs:
+            p.stop()
+    # the encoder readings reach the set-points within 5 % (mean of 10 readings a 50 ms window)
+    assert abs(sum(left) / len(left) - 8.0) <= 0.4, left
+    assert abs(sum(right) / len(right) + 6.0) <= 0.3, right
+    wl = [float(e.split()[1]) for e in b.sim.events_starting('motor')[-10:]]
+    assert abs(sum(wl) / len(wl) - 8.0) <= 0.4, wl
+    imu = b.echo('/imu/data_raw')
+    assert 'frame_id: "imu_link"' in imu and re.search(r'z: 9\.80', imu), imu

@@ -1,0 +1,1 @@
+"""rosserial_python: the host side of rosserial (re-implementation)."""

@@ -1,0 +1,514 @@
+/*
+ * simulate: an Arduino Mega (ATmega2560, 16 MHz) on simavr for rosserial sketches.
+ *
+ *   simulate ELF [--speed X] [--distance CM] [--quiet]
+ *
+ * UART0 (Serial) is bridged to a pseudo-terminal; its path is the first line on stdout:
+ *   pty: /dev/pts/N
+ * Emulated around the MCU:
+ *   - the LED on pin 13 (PB7): every change is reported on stdout as  "pin 13 <0|1> <ms>"
+ *   - an HC-SR04 with TRIG on pin 11 (PB5) and ECHO on pin 12 (PB6): a trigger pulse is
+ *     answered with an echo pulse of 2*distance/343 m/s (distance set by --distance or by the
+ *     stdin command "distance CM"); each echo is reported as "echo <cm> <us> <ms>"
+ *   - the space scanner's drive (sketches/space_scanner_base): an L298N (ENA 4, IN1 5, IN2 6,
+ *     IN3 7, IN4 8, ENB 9) driving two gear motors (15 rad/s at full duty, 80 ms time constant,
+ *     minus the load set by "load L R"), LM393 encoders with 40 edges a wheel turn on pins 2
+ *     and 3, an MPU6050 at 0x68 on TWI (level, still, gyro z = the drive's yaw rate);
+ *     every 100 ms while a wheel turns: "motor <wL> <wR> <dutyL> <dutyR> <ms>" (rad/s, -1..1)
+ * Side channel: stdout lines (events, flushed) and stdin commands, one a line:
+ *   distance CM      set the ultrasonic distance (cm)
+ *   load L R         load on the left/right wheel, 0..1 of the motor's torque
+ *   garbage N        write N pseudo-random bytes to the host (fault injection)
+ *   reset            reset the MCU (fault injection; the sketch starts over)
+ *   quit             stop
+ * Time: simulated time is paced to the wall clock times --speed (1 = real time, default;
+ * 0 = as fast as possible). On exit, stderr gets "speed: R x real time (N cycles in S s)".
+ */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include <math.h>
+
+#include <simavr/avr_ioport.h>
+#include <simavr/avr_twi.h>
+#include <simavr/avr_uart.h>
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_irq.h>
+
+#define F_CPU 16000000UL
+#define SOUND_SPEED 343.0
+
+static avr_t *avr;
+static int pty_master = -1, pty_slave = -1;
+static volatile sig_atomic_t stop_requested;
+static int uart_xon = 1;
+static avr_irq_t *uart_in_irq;
+
+static unsigned char in_buf[4096];   /* host -> MCU bytes waiting for the UART */
+static size_t in_len, in_pos;
+
+static double distance_cm = 100.0;
+static uint64_t trig_rise_cycle;
+static avr_irq_t *echo_irq;
+static int quiet;
+
+static double now_s(void)
+{
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return ts.tv_sec + ts.tv_nsec * 1e-9;
+}
+
+static double sim_ms(void) { return avr->cycle * 1000.0 / F_CPU; }
+
+static void on_signal(int sig) { (void)sig; stop_requested = 1; }
+
+/* ---- UART0 <-> pty ---------------------------------------------------------------------- */
+
+static void uart_out_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  unsigned char b = (unsigned char)value;
+  /* nobody listening and the pty buffer full: the byte is lost, as on a real line */
+  if (write(pty_master, &b, 1) < 0 && errno != EAGAIN && errno != EIO)
+    perror("simulate: pty write");
+}
+
+static void uart_xon_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)value; (void)param;
+  uart_xon = 1;
+}
+
+static void uart_xoff_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)value; (void)param;
+  uart_xon = 0;
+}
+
+static uint64_t next_in_cycle, xoff_since;
+
+/* cycles one byte takes on the line (10 bits) at the baud rate the firmware set (UBRR0, U2X0) */
+static uint64_t byte_cycles(void)
+{
+  unsigned ubrr = avr->data[0xC4] | ((avr->data[0xC5] & 0x0F) << 8);
+  unsigned div = (avr->data[0xC0] & 0x02) ? 8 : 16;
+  return 10ULL * div * (ubrr + 1);
+}
+
+/* Host bytes go in at the line's pace, never faster than the MCU's UART could receive them,
+   and not while simavr's UART input FIFO signals XOFF (a lost XON is forgiven after 5 ms). */
+static void pump_uart_in(void)
+{
+  if (in_pos == in_len) {
+    in_pos = in_len = 0;
+    ssize_t n = read(pty_master, in_buf, sizeof in_buf);
+    if (n > 0)
+      in_len = (size_t)n;
+  }
+  if (!uart_xon) {
+    if (!xoff_since)
+      xoff_since = avr->cycle;
+    if (avr->cycle - xoff_since < F_CPU / 200)
+      return;
+    uart_xon = 1;
+  }
+  xoff_since = 0;
+  while (uart_xon && in_pos < in_len && avr->cycle >= next_in_cycle) {
+    avr_raise_irq(uart_in_irq, in_buf[in_pos++]);
+    next_in_cycle = (next_in_cycle > avr->cycle ? next_in_cycle : avr->cycle) + byte_cycles();
+  }
+}
+
+static int open_pty(char *name, size_t len)
+{
+  pty_master = posix_openpt(O_RDWR | O_NOCTTY);
+  if (pty_master < 0 || grantpt(pty_master) || unlockpt(pty_master))
+    return -1;
+  if (ptsname_r(pty_master, name, len))
+    return -1;
+  /* keep the slave open ourselves: the pty survives the host closing and reopening it, and
+     it is raw (no echo, no line editing) before the host configures it */
+  pty_slave = open(name, O_RDWR | O_NOCTTY);
+  if (pty_slave < 0)
+    return -1;
+  struct termios t;
+  tcgetattr(pty_slave, &t);
+  cfmakeraw(&t);
+  cfsetspeed(&t, B57600);
+  tcsetattr(pty_slave, TCSANOW, &t);
+  fcntl(pty_master, F_SETFL, fcntl(pty_master, F_GETFL) | O_NONBLOCK);
+  return 0;
+}
+
+/* ---- LED on pin 13 ------------------------------------------------------------------------ */
+
+static void led_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)param;
+  if (irq->value == value && irq->flags & IRQ_FLAG_INIT)
+    return;
+  printf("pin 13 %u %.1f\n", value ? 1 : 0, sim_ms());
+  fflush(stdout);
+}
+
+/* ---- HC-SR04 ------------------------------------------------------------------------------ */
+
+static avr_cycle_count_t echo_end(avr_t *a, avr_cycle_count_t when, void *param)
+{
+  (void)a; (void)when; (void)param;
+  avr_raise_irq(echo_irq, 0);
+  return 0;
+}
+
+static avr_cycle_count_t echo_start(avr_t *a, avr_cycle_count_t when, void *param)
+{
+  (void)when; (void)param;
+  double us = 2.0 * distance_cm / 100.0 / SOUND_SPEED * 1e6;
+  avr_raise_irq(echo_irq, 1);
+  avr_cycle_timer_register_usec(a, (uint32_t)(us + 0.5), echo_end, NULL);
+  if (!quiet) {
+    printf("echo %.2f %.1f %.1f\n", distance_cm, us, sim_ms());
+    fflush(stdout);
+  }
+  return 0;
+}
+
+static void trig_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  if (value) {
+    trig_rise_cycle = avr->cycle;
+  } else if (trig_rise_cycle && avr->cycle - trig_rise_cycle >= 8 * (F_CPU / 1000000)) {
+    /* a trigger of >= 8 us (the datasheet asks for 10): the module bursts for ~450 us */
+    trig_rise_cycle = 0;
+    avr_cycle_timer_register_usec(avr, 450, echo_start, NULL);
+  }
+}
+
+
+/* ---- the space scanner's drive: L298N, gear motors, LM393 encoders, MPU6050 ------------- */
+/* ENA pin 4 = OC0B (PG5), IN1 5 = PE3, IN2 6 = PH3, IN3 7 = PH4, IN4 8 = PH5, ENB 9 = OC2B (PH6);
+   encoders: left pin 2 = PE4 (INT4), right pin 3 = PE5 (INT5); MPU6050 at 0x68 on TWI. */
+#define REG_PINE 0x2C
+#define REG_PORTE 0x2E
+#define REG_PORTG 0x34
+#define REG_TCCR0A 0x44
+#define REG_OCR0B 0x48
+#define REG_TCCR2A 0xB0
+#define REG_OCR2B 0xB4
+#define REG_PORTH 0x102
+#define WHEEL_MAX 15.0        /* rad/s at full duty, no load (12 V 120 rpm motor on a 14.8 V pack) */
+#define MOTOR_TAU 0.08        /* s, speed time constant of motor + gearbox + wheel */
+#define EDGES_PER_REV 40.0    /* 20-slot disc, both edges */
+#define WHEEL_RADIUS 0.0325
+#define TRACK 0.182
+
+typedef struct wheel_t {
+  double w;       /* rad/s, signed */
+  double angle;   /* rad, for the encoder */
+  double load;    /* 0..1: fraction of the torque taken by the load */
+  int level;
+  avr_irq_t *enc;
+  const char *name;
+} wheel_t;
+static wheel_t wheels[2] = {{0, 0, 0, 0, NULL, "left"}, {0, 0, 0, 0, NULL, "right"}};
+static uint64_t drive_last_cycle;
+static double drive_next_report_ms;
+
+static int bit(uint16_t reg, int b) { return (avr->data[reg] >> b) & 1; }
+
+static double duty(int ch)   /* L298N enable input as a duty cycle 0..1 */
+{
+  if (ch == 0)
+    return bit(REG_TCCR0A, 5) ? avr->data[REG_OCR0B] / 255.0 : bit(REG_PORTG, 5);
+  return bit(REG_TCCR2A, 5) ? avr->data[REG_OCR2B] / 255.0 : bit(REG_PORTH, 6);
+}
+
+static int bridge(int ch)    /* +1 forward, -1 reverse, 0 brake/free */
+{
+  int a = ch == 0 ? bit(REG_PORTE, 3) : bit(REG_PORTH, 4);
+  int b = ch == 0 ? bit(REG_PORTH, 3) : bit(REG_PORTH, 5);
+  return a == b ? 0 : (a ? 1 : -1);
+}
+
+static void drive_step(void)
+{
+  double dt = (avr->cycle - drive_last_cycle) / (double)F_CPU;
+  drive_last_cycle = avr->cycle;
+  if (dt <= 0)
+    return;
+  for (int ch = 0; ch < 2; ch++) {
+    wheel_t *w = &wheels[ch];
+    double target = bridge(ch) * duty(ch) * WHEEL_MAX * (1.0 - w->load);
+    w->w += (target - w->w) * (1.0 - exp(-dt / MOTOR_TAU));
+    w->angle += fabs(w->w) * dt;
+    double edge = 2 * M_PI / EDGES_PER_REV;
+    while (w->angle >= edge) {          /* the slotted disc: one pin change per edge */
+      w->angle -= edge;
+      w->level = !w->level;
+      avr_raise_irq(w->enc, w->level);
+    }
+  }
+  if (sim_ms() >= drive_next_report_ms && (wheels[0].w != 0 || wheels[1].w != 0)) {
+    drive_next_report_ms = sim_ms() + 100;
+    printf("motor %.3f %.3f %.3f %.3f %.1f\n", wheels[0].w, wheels[1].w,
+           bridge(0) * duty(0), bridge(1) * duty(1), sim_ms());
+    fflush(stdout);
+  }
+}
+
+static uint8_t mpu_regs[128];
+static uint8_t mpu_selected, mpu_ptr, mpu_first;
+static avr_irq_t *twi_in;
+
+static void mpu_put16(int reg, double v)
+{
+  if (v > 32767) v = 32767;
+  if (v < -32768) v = -32768;
+  int16_t x = (int16_t)lrint(v);
+  mpu_regs[reg] = (uint8_t)((uint16_t)x >> 8);
+  mpu_regs[reg + 1] = (uint8_t)(x & 0xFF);
+}
+
+static void mpu_update(void)
+{
+  double yaw_rate = WHEEL_RADIUS * (wheels[1].w - wheels[0].w) / TRACK;   /* rad/s */
+  mpu_put16(0x3B, 0);                 /* accel x, y, z: level and still: 1 g on z */
+  mpu_put16(0x3D, 0);
+  mpu_put16(0x3F, 16384);
+  mpu_put16(0x41, (25.0 - 36.53) * 340.0);   /* 25 degrees C */
+  mpu_put16(0x43, 0);
+  mpu_put16(0x45, 0);
+  mpu_put16(0x47, yaw_rate * 180.0 / M_PI * 131.0);
+  mpu_regs[0x75] = 0x68;              /* WHO_AM_I */
+}
+
+static void twi_hook(struct avr_irq_t *irq, uint32_t value, void *param)
+{
+  (void)irq; (void)param;
+  avr_twi_msg_irq_t v;
+  v.u.v = value;
+  if (v.u.twi.msg & TWI_COND_STOP)
+    mpu_selected = 0;
+  if (v.u.twi.msg & TWI_COND_START) {
+    mpu_selected = 0;
+    if ((v.u.twi.addr >> 1) == 0x68) {
+      mpu_selected = v.u.twi.addr;
+      mpu_first = 1;
+      mpu_update();
+      avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_ACK, mpu_selected, 1));
+    }
+  }
+  if (!mpu_selected)
+    return;
+  if (v.u.twi.msg & TWI_COND_WRITE) {
+    avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_ACK, mpu_selected, 1));
+    if (mpu_first) {
+      mpu_ptr = v.u.twi.data & 0x7F;
+      mpu_first = 0;
+    } else {
+      mpu_regs[mpu_ptr & 0x7F] = v.u.twi.data;
+      mpu_ptr++;
+    }
+  }
+  if (v.u.twi.msg & TWI_COND_READ) {
+    avr_raise_irq(twi_in, avr_twi_irq_msg(TWI_COND_READ, mpu_selected, mpu_regs[mpu_ptr & 0x7F]));
+    mpu_ptr++;
+  }
+}
+
+/* ---- stdin commands ----------------------------------------------------------------------- */
+
+static char cmd_buf[256];
+static size_t cmd_len;
+
+static void handle_command(const char *line)
+{
+  double v, v2;
+  if (sscanf(line, "distance %lf", &v) == 1) {
+    distance_cm = v;
+  } else if (sscanf(line, "garbage %lf", &v) == 1) {
+    /* fault injection: v pseudo-random bytes on the line to the host */
+    unsigned seed = (unsigned)avr->cycle;
+    for (int i = 0; i < (int)v; i++) {
+      unsigned char b = (unsigned char)(rand_r(&seed) >> 7);
+      if (write(pty_master, &b, 1) < 0)
+        break;
+    }
+    printf("garbage %d %.1f\n", (int)v, sim_ms());
+    fflush(stdout);
+  } else if (strncmp(line, "reset", 5) == 0) {
+    /* fault injection: the MCU resets (as by its reset button); the sketch starts over */
+    avr_reset(avr);
+    in_pos = in_len = 0;
+    printf("reset %.1f\n", sim_ms());
+    fflush(stdout);
+  } else if (sscanf(line, "load %lf %lf", &v, &v2) == 2) {
+    wheels[0].load = v;
+    wheels[1].load = v2;
+  } else if (strncmp(line, "quit", 4) == 0) {
+    stop_requested = 1;
+  } else if (line[0]) {
+    fprintf(stderr, "simulate: unknown command '%s' (distance CM | load L R | garbage N | reset | quit)\n", line);
+  }
+}
+
+static void poll_stdin(void)
+{
+  char buf[256];
+  ssize_t n = read(0, buf, sizeof buf);
+  if (n == 0) {           /* stdin closed: keep running, just stop polling it */
+    close(0);
+    return;
+  }
+  for (ssize_t i = 0; i < n; i++) {
+    if (buf[i] == '\n' || cmd_len == sizeof cmd_buf - 1) {
+      cmd_buf[cmd_len] = 0;
+      handle_command(cmd_buf);
+      cmd_len = 0;
+    } else {
+      cmd_buf[cmd_len++] = buf[i];
+    }
+  }
+}
+
+/* simavr's messages go to stderr (stdout is the side channel), errors only (its timer
+   warnings about Arduino's phase-correct PWM set-up would flood it) */
+static void quiet_logger(avr_t *a, const int level, const char *format, va_list ap)
+{
+  (void)a;
+  if (level <= LOG_ERROR)
+    vfprintf(stderr, format, ap);
+}
+
+static void usage(void)
+{
+  fprintf(stderr, "usage: simulate ELF [--speed X] [--distance CM] [--quiet]\n");
+  exit(2);
+}
+
+int main(int argc, char **argv)
+{
+  const char *elf = NULL;
+  double speed = 1.0;
+  for (int i = 1; i < argc; i++) {
+    if (!strcmp(argv[i], "--speed") && i + 1 < argc) {
+      speed = atof(argv[++i]);
+    } else if (!strcmp(argv[i], "--distance") && i + 1 < argc) {
+      distance_cm = atof(argv[++i]);
+    } else if (!strcmp(argv[i], "--quiet")) {
+      quiet = 1;
+    } else if (argv[i][0] == '-') {
+      usage();
+    } else if (!elf) {
+      elf = argv[i];
+    } else {
+      usage();
+    }
+  }
+  if (!elf)
+    usage();
+  if (access(elf, R_OK)) {
+    fprintf(stderr, "simulate: %s: %s\n", elf, strerror(errno));
+    return 1;
+  }
+  avr_global_logger_set(quiet_logger);
+  elf_firmware_t fw;
+  memset(&fw, 0, sizeof fw);
+  if (elf_read_firmware(elf, &fw)) {
+    fprintf(stderr, "simulate: %s: not an AVR ELF file\n", elf);
+    return 1;
+  }
+  avr = avr_make_mcu_by_name("atmega2560");
+  if (!avr) {
+    fprintf(stderr, "simulate: simavr has no atmega2560\n");
+    return 1;
+  }
+  avr_init(avr);
+  fw.frequency = F_CPU;
+  fw.vcc = fw.avcc = fw.aref = 5000;   /* mV: a USB-powered Mega; analog inputs read 0 */
+  avr_load_firmware(avr, &fw);
+  avr->log = 0;
+
+  char name[128];
+  if (open_pty(name, sizeof name)) {
+    perror("simulate: cannot create a pty");
+    return 1;
+  }
+  /* UART0 */
+  uint32_t flags = 0;
+  avr_ioctl(avr, AVR_IOCTL_UART_GET_FLAGS('0'), &flags);
+  flags &= ~AVR_UART_FLAG_STDIO;   /* not to simavr's own stdout */
+  avr_ioctl(avr, AVR_IOCTL_UART_SET_FLAGS('0'), &flags);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUTPUT),
+                          uart_out_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XON),
+                          uart_xon_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_OUT_XOFF),
+                          uart_xoff_hook, NULL);
+  uart_in_irq = avr_io_getirq(avr, AVR_IOCTL_UART_GETIRQ('0'), UART_IRQ_INPUT);
+  /* pins */
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 7), led_hook, NULL);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 5), trig_hook, NULL);
+  echo_irq = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 6);
+  wheels[0].enc = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('E'), 4);
+  wheels[1].enc = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('E'), 5);
+  avr_irq_register_notify(avr_io_getirq(avr, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_OUTPUT), twi_hook,
+                          NULL);
+  twi_in = avr_io_getirq(avr, AVR_IOCTL_TWI_GETIRQ(0), TWI_IRQ_INPUT);
+  mpu_update();
+
+  signal(SIGINT, on_signal);
+  signal(SIGTERM, on_signal);
+  signal(SIGPIPE, SIG_IGN);
+  fcntl(0, F_SETFL, fcntl(0, F_GETFL) | O_NONBLOCK);
+
+  printf("pty: %s\n", name);
+  fflush(stdout);
+
+  const double t0 = now_s();
+  int state = cpu_Running;
+  uint64_t next_check = 0, next_uart = 0;
+  while (!stop_requested) {
+    state = avr_run(avr);
+    if (state == cpu_Done || state == cpu_Crashed)
+      break;
+    if (avr->cycle >= next_uart && (in_pos < in_len || avr->cycle >= next_check)) {
+      next_uart = avr->cycle + F_CPU / 20000;   /* queued host bytes: every 50 us */
+      pump_uart_in();
+    }
+    if (avr->cycle < next_check)
+      continue;
+    next_check = avr->cycle + F_CPU / 2000;   /* everything else every 0.5 ms */
+    poll_stdin();
+    drive_step();
+    if (speed > 0) {
+      double ahead = avr->cycle / (double)F_CPU / speed - (now_s() - t0);
+      if (ahead > 0.001) {
+        struct pollfd p = {pty_master, POLLIN, 0};
+        poll(&p, 1, (int)(ahead * 1000));
+      }
+    }
+  }
+  const double wall = now_s() - t0;
+  fprintf(stderr, "speed: %.2f x real time (%llu cycles in %.2f s)\n",
+          wall > 0 ? avr->cycle / (double)F_CPU / wall : 0.0,
+          (unsigned long long)avr->cycle, wall);
+  if (state == cpu_Crashed) {
+    fprintf(stderr, "simulate: the MCU crashed at pc 0x%x\n", avr->pc);
+    return 3;
+  }
+  return 0;
+}
