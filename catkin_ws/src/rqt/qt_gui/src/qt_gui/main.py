@@ -292,6 +292,8 @@ class Main(object):
             self.main_window.restoreGeometry(geometry)
         elif standalone:
             self.main_window.adjustSize()
+            size = self.main_window.size()
+            self.main_window.resize(max(size.width(), 600), max(size.height(), 450))
         else:
             self.main_window.resize(600, 450)
             self.main_window.move(100, 100)

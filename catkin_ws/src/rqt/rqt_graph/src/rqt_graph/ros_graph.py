@@ -42,7 +42,7 @@ class RosGraphWidget(QWidget):
         self.edge_items = []
         self.error = None
 
-        self.refresh_graph_push_button = QPushButton(QIcon.fromTheme('view-refresh'), '')
+        self.refresh_graph_push_button = QPushButton(QIcon.fromTheme('view-refresh'), 'Refresh')
         self.refresh_graph_push_button.setToolTip('Refresh ROS graph')
         self.refresh_graph_push_button.setObjectName('refresh_graph_push_button')
         self.graph_type_combo_box = QComboBox()
@@ -50,6 +50,7 @@ class RosGraphWidget(QWidget):
         for label, key in graph_model.GRAPH_TYPES:
             self.graph_type_combo_box.addItem(label, key)
         self.filter_line_edit = QLineEdit('/')
+        self.filter_line_edit.setMinimumWidth(80)
         self.filter_line_edit.setObjectName('filter_line_edit')
         self.filter_line_edit.setToolTip('node/namespace filter (comma separated, -name excludes)')
         self.topic_filter_line_edit = QLineEdit('/')
@@ -59,7 +60,7 @@ class RosGraphWidget(QWidget):
         self.namespace_cluster_spin_box.setObjectName('namespace_cluster_spin_box')
         self.namespace_cluster_spin_box.setRange(0, 10)
         self.namespace_cluster_spin_box.setValue(2)
-        self.fit_in_view_push_button = QPushButton(QIcon.fromTheme('zoom-original'), '')
+        self.fit_in_view_push_button = QPushButton(QIcon.fromTheme('zoom-original'), 'Fit')
         self.fit_in_view_push_button.setToolTip('Fit in view')
         self.save_dot_push_button = QPushButton('DOT')
         self.save_svg_push_button = QPushButton('SVG')

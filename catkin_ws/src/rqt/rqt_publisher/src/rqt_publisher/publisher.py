@@ -47,7 +47,7 @@ class PublisherWidget(QWidget):
         super(PublisherWidget, self).__init__(parent)
         self.setObjectName('PublisherUi')
         self.setWindowTitle('Message Publisher')
-        self.refresh_button = QPushButton(QIcon.fromTheme('view-refresh'), '')
+        self.refresh_button = QPushButton(QIcon.fromTheme('view-refresh'), 'Refresh')
         self.refresh_button.setToolTip('Refresh topics and types')
         self.topic_combo_box = QComboBox()
         self.topic_combo_box.setObjectName('topic_combo_box')
