@@ -28,7 +28,9 @@ def scenario(main, step):
             w.refresh()
         m = w.model
         # rospy_tutorials' talker and listener are anonymous: /talker_<pid>_<stamp>
-        if m is None or not all(any(n.startswith(p) for n in m.nodes) for p in ('/talker', '/listener')):
+        # and connected: the edge comes from the nodes' getBusInfo, once the subscriber connected
+        if m is None or not all(any(n.startswith(p) for n in m.nodes) for p in ('/talker', '/listener')) \
+                or not any(e[2] == '/chatter' for e in m.edges):
             return False
         emit(mode='node_node', nodes=m.nodes, edges=[list(e) for e in m.edges],
              title=main.main_window.windowTitle())
