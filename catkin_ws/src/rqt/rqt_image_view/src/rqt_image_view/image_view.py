@@ -103,15 +103,21 @@ class ImageView(Plugin):
         self.status = QLabel()
         bar = QHBoxLayout()
         for x in (self.refresh_topics_push_button, self.topics_combo_box, self.zoom_1_push_button,
-                  self.dynamic_range_check_box, QLabel('Max depth'), self.max_range_double_spin_box,
-                  self.color_scheme_combo_box, QLabel('Grid'), self.num_gridlines_spin_box,
-                  self.save_as_image_push_button, self.smooth_image_check_box,
-                  self.rotate_left_push_button, self.rotate_label, self.rotate_right_push_button,
-                  self.publish_click_location_check_box, self.publish_click_location_topic_line_edit):
+                  self.save_as_image_push_button, self.rotate_left_push_button, self.rotate_label,
+                  self.rotate_right_push_button, self.publish_click_location_check_box,
+                  self.publish_click_location_topic_line_edit):
             bar.addWidget(x)
+        bar2 = QHBoxLayout()
+        for x in (self.dynamic_range_check_box, QLabel('Max depth'), self.max_range_double_spin_box,
+                  self.color_scheme_combo_box, QLabel('Grid'), self.num_gridlines_spin_box,
+                  self.smooth_image_check_box):
+            bar2.addWidget(x)
+        bar2.addStretch(1)
+        self.publish_click_location_check_box.setToolTip('publish the location of left clicks')
         self.image_frame = ImageFrame()
         layout = QVBoxLayout(w)
         layout.addLayout(bar)
+        layout.addLayout(bar2)
         layout.addWidget(self.image_frame, 1)
         layout.addWidget(self.status)
         self._rotate = 0
