@@ -232,7 +232,16 @@ class Main(object):
         keepalive.start(500)
         for fn in self.on_started:
             QTimer.singleShot(0, lambda fn=fn: fn(self))
-        self.app.exec_()
+        # an exception in a slot must not abort the whole GUI (PyQt5's default): log it
+        def excepthook(kind, value, tb):
+            import traceback
+            print('qt_gui: unhandled exception in a plugin:\n%s' % ''.join(
+                traceback.format_exception(kind, value, tb)), file=sys.stderr, flush=True)
+        old_hook, sys.excepthook = sys.excepthook, excepthook
+        try:
+            self.app.exec_()
+        finally:
+            sys.excepthook = old_hook
         keepalive.stop()
         self.plugin_manager.unload_all()
         self.qsettings.sync()
