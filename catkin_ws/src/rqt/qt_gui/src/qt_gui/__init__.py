@@ -1,0 +1,1 @@
+"""qt_gui: the plugin framework behind rqt (re-implementation, see README.md)."""
