@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 import rospy
 
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Light, Link, Model, ModelError,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Light, Link, Model, ModelError,
                            Physics, Plugin as PluginDesc, Sensor, Visual, World)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins import camera as camera_plugin
-from ode_sim.plugins.base import PluginContext
-from ode_sim.plugins.rosio import MemoryPublisher
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins import camera as camera_plugin
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import MemoryPublisher
+from ode_sim.description.transforms import Pose
 
 W, H = 64, 48
 HFOV = 1.047

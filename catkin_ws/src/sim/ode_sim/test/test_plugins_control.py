@@ -15,12 +15,12 @@ import rospy
 
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Bool
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
                            Plugin as PluginDesc, Transmission)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins.base import PluginContext
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.description.transforms import Pose
 
 I_ARM = 1 / 12 + 0.25           # 1 kg, 1 m arm about its end
 I_SPIN = 0.1
@@ -282,7 +282,7 @@ def test_contract_over_real_topics_in_lockstep(roscore, tmp_path):
 def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
     """With ROS up the plugin starts gazebo_ros_control_node in NS (here a stand-in script
     that records its arguments) and stops it on shutdown; controllerNode=false starts none."""
-    from ode_sim.plugins import control
+    from ode_sim.ros.plugins import control
     import roslib.packages
     args = tmp_path / 'args'
     fake = tmp_path / 'gazebo_ros_control_node'

@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 import rospy
 
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
                            Plugin as PluginDesc, Sensor, Visual, World)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins import laser as laser_plugin
-from ode_sim.plugins.base import PluginContext
-from ode_sim.plugins.rosio import MemoryPublisher
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins import laser as laser_plugin
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import MemoryPublisher
+from ode_sim.description.transforms import Pose
 
 # sensor origin on the robot link; the robot stands at the world origin (yaw 0) at z = 0.5
 SENSOR_XYZ = (0.1, 0.0, 0.2)

@@ -142,7 +142,7 @@ class FakeClock:
 
 
 def paced_run(rate, steps, cost, stall_at=None, stall=0.0):
-    from ode_sim.node import Pacer
+    from ode_sim.ros.node import Pacer
     clock = FakeClock()
     pacer = Pacer(clock, clock.sleep)
     pacer.restart(rate, 0)

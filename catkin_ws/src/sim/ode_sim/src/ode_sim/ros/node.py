@@ -9,11 +9,10 @@ import time
 import rospy
 from rosgraph_msgs.msg import Clock
 
-from . import plugins as plugin_registry
-from .model import ModelError
-from .physics import PhysicsWorld
-from .plugins.base import PluginContext
-from .transforms import Pose
+from ode_sim.ros import plugins as plugin_registry
+from ode_sim.description.model import ModelError
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins.base import PluginContext
 
 
 class Spawner:
@@ -137,7 +136,7 @@ class SimNode:
             return self.physics.remove_model(name)
 
     def _rebuild_hooks(self):
-        from .plugins.base import Plugin
+        from ode_sim.ros.plugins.base import Plugin
         allp = [p for ps in self.plugins.values() for p in ps]
         self._pre = [p for p in allp if type(p).before_step is not Plugin.before_step]
         self._post = [p for p in allp if type(p).update is not Plugin.update]
@@ -214,12 +213,3 @@ class SimNode:
 
     def stop(self):
         self._stop.set()
-
-
-def model_pose_from_request(pose_msg):
-    p = pose_msg.position
-    o = pose_msg.orientation
-    q = (o.x, o.y, o.z, o.w)
-    if q == (0.0, 0.0, 0.0, 0.0):
-        q = (0.0, 0.0, 0.0, 1.0)
-    return Pose((p.x, p.y, p.z), q)

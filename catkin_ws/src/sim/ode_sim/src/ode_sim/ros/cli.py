@@ -27,7 +27,7 @@ def parse_args(argv):
 def main(argv):
     known, unknown = parse_args(argv)
     import rospy
-    from .model import ModelError
+    from ode_sim.description.model import ModelError
     rospy.init_node('gazebo', anonymous=False)
     for u in unknown:
         rospy.logwarn('sim_node: ignoring argument %r (a gzserver option ode_sim does not have)'
@@ -36,8 +36,8 @@ def main(argv):
         rospy.logerr("sim_node: physics engine '%s' is not available; ode_sim simulates with ODE"
                      % known.physics)
         return 2
-    from . import sdf
-    from .resolve import resolve_world
+    from ode_sim.description import sdf
+    from ode_sim.description.resolve import resolve_world
     try:
         path = resolve_world(known.world)
         world = sdf.load_world(path)
@@ -45,8 +45,8 @@ def main(argv):
         rospy.logfatal('sim_node: %s' % e)
         sys.stderr.write('sim_node: error: %s\n' % e)
         return 1
-    from .gazebo_api import GazeboApi
-    from .node import SimNode
+    from ode_sim.ros.gazebo_api import GazeboApi
+    from ode_sim.ros.node import SimNode
     lockstep = known.lockstep or bool(rospy.get_param('~lockstep', False))
     try:
         node = SimNode(world, paused=known.pause, lockstep=lockstep, verbose=known.verbose)

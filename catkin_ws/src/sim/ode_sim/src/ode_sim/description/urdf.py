@@ -15,13 +15,14 @@ import os
 
 import numpy as np
 
-from . import materials
-from .model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Surface,
-                    Transmission, Visual)
-from .resolve import ModelPaths
-from .sdf import _Ctx, check_inertial, load_mesh_geometry, parse_plugin, parse_sensor, \
-    parse_surface, parse_xml
-from .transforms import Pose
+from ode_sim.description import materials
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model,
+                                       ModelError, Surface, Transmission, Visual)
+from ode_sim.description.resolve import ModelPaths
+from ode_sim.description.sdf_elements import (check_inertial, load_mesh_geometry, parse_plugin,
+                                              parse_sensor, parse_surface)
+from ode_sim.description.xmldoc import ParseContext, parse_xml
+from ode_sim.description.transforms import Pose
 
 LUMP = '_fixed_joint_lump__'
 _TRUE = ('1', 'true', 'yes')
@@ -63,7 +64,7 @@ class _Parser:
         self.base_dir = os.path.dirname(os.path.abspath(source)) if os.path.exists(source) \
             else os.getcwd()
         self.warnings = []
-        self.ctx = _Ctx(self.doc, self.paths, self.base_dir, self.warnings, (1, 6))
+        self.ctx = ParseContext(self.doc, self.paths, self.base_dir, self.warnings, (1, 6))
         self.model_name = model_name
         self.materials = {}
 

@@ -7,7 +7,7 @@ import warnings
 
 import numpy as np
 
-from .model import ModelError
+from ode_sim.description.model import ModelError
 
 _CACHE = {}
 

@@ -1,14 +1,14 @@
 """What a plugin sees of the simulator, and the base class of the built-in plugins.
 
 A URDF/SDF `<plugin filename="libgazebo_ros_X.so">` selects the class registered under that
-file name (ode_sim.plugins.REGISTRY). The node creates one instance per tag:
+file name (ode_sim.ros.plugins.REGISTRY). The node creates one instance per tag:
 
     plugin = cls(ctx, model, desc, sensor)
 
 - ctx: PluginContext (below) — physics world, sim time, ray caster, renderer, TF.
-- model: ode_sim.physics.SimModel the plugin belongs to (links, joints, pose()).
-- desc: ode_sim.model.Plugin (params dict of child tag -> text, the raw element).
-- sensor: ode_sim.model.Sensor for sensor plugins (a plugin inside <sensor>), else None.
+- model: ode_sim.engine.physics.SimModel the plugin belongs to (links, joints, pose()).
+- desc: ode_sim.description.model.Plugin (params dict of child tag -> text, the raw element).
+- sensor: ode_sim.description.model.Sensor for sensor plugins (a plugin inside <sensor>), else None.
 
 The node then calls, on the simulation thread:
 - `before_step()` before every physics step, for plugins that override it (apply commands;
@@ -22,13 +22,13 @@ import math
 
 import rospy
 
-from ..model import ModelError
+from ode_sim.description.model import ModelError
 
 
 class PluginContext:
     """Filled by the node. Attributes:
-    physics      ode_sim.physics.PhysicsWorld
-    world        ode_sim.model.World (lights, scene, physics settings)
+    physics      ode_sim.engine.physics.PhysicsWorld
+    world        ode_sim.description.model.World (lights, scene, physics settings)
     lockstep     bool: the ros_control bridge waits for each period's command
     tf           tf2_ros.TransformBroadcaster (shared)
     """
@@ -53,7 +53,7 @@ class PluginContext:
 
     def raycaster(self):
         """A RayCaster over the current collision shapes of the world."""
-        from ..raycast import RayCaster
+        from ode_sim.engine.raycast import RayCaster
         if self._raycaster is None:
             self._raycaster = RayCaster(self.physics.collision_shapes())
             self._ray_version = self.physics.version
@@ -64,7 +64,7 @@ class PluginContext:
 
     def renderer(self, width, height, hfov, near=0.1, far=100.0, depth=False):
         """A new Renderer whose scene follows the world's visuals (see refresh_renderers)."""
-        from ..render import Renderer
+        from ode_sim.engine.render import Renderer
         r = Renderer(width, height, hfov, near, far, depth=depth)
         self._set_scene(r)
         self._renderers.append(r)

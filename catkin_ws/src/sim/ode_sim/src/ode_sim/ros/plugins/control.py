@@ -46,8 +46,8 @@ import time
 
 import rospy
 
-from .base import Plugin
-from .rosio import close, publisher, ros_up, subscriber
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.rosio import close, publisher, ros_up, subscriber
 
 EFFORT = 'EffortJointInterface'
 VELOCITY = 'VelocityJointInterface'

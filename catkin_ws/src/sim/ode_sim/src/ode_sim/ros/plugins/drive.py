@@ -26,10 +26,10 @@ import math
 
 import rospy
 
-from .base import Plugin
-from .rosio import close, publisher, subscriber
-from .state import fill_pose, transform_msg
-from ..transforms import Pose, quat_from_rpy
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.rosio import close, publisher, subscriber
+from ode_sim.ros.convert import fill_pose, transform_msg
+from ode_sim.description.transforms import Pose, quat_from_rpy
 
 LEFT, RIGHT = 0, 1
 ODOM_POSE_COVARIANCE = {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}

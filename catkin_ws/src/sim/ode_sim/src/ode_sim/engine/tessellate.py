@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .model import ModelError
+from ode_sim.description.model import ModelError
 
 CYLINDER_SEGMENTS = 32
 SPHERE_SLICES = 32

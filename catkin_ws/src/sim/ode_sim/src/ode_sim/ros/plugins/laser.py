@@ -15,7 +15,7 @@ In a <sensor type="ray"> (or "gpu_ray"). Tags:
                   noise comes from the sensor's <ray><noise> only.
 Publishes sensor_msgs/LaserScan (queue 1) at the sensor's <update_rate> (0 = every physics
 step) while someone subscribes: stamp = sim time of the measurement, angles and ranges as
-ode_sim.laser documents (Gazebo's ray sensor: rays start at range_min, nothing hit -> +inf,
+ode_sim.engine.laser documents (Gazebo's ray sensor: rays start at range_min, nothing hit -> +inf,
 below range_min -> -inf, noise then clamp). The rays start at the sensor frame
 (link pose * sensor pose). Like Gazebo, the sensor sees every collision including its own
 link's (a lidar inside its own collision box sees the box unless range_min reaches past it);
@@ -24,8 +24,8 @@ set EXCLUDE_OWN_LINK to drop the own link instead.
 import rospy
 from sensor_msgs.msg import LaserScan
 
-from .base import Plugin
-from .rosio import publisher
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.rosio import publisher
 
 
 #: Gazebo's ray sensor does not exclude the link carrying it; True drops that link's shapes.
@@ -69,7 +69,7 @@ class LaserPlugin(Plugin):
         super().__init__(ctx, model, desc, sensor)
         if sensor is None or sensor.type not in self.sensor_types:
             raise self.error('must be inside a <sensor type="ray"> or <sensor type="gpu_ray">')
-        from ..laser import LaserModel
+        from ode_sim.engine.laser import LaserModel
         self.ns = sensor_namespace(self)
         self.laser = LaserModel(sensor)
         if not self.has('frameName'):
@@ -95,7 +95,7 @@ class LaserPlugin(Plugin):
 
     def message(self):
         """A LaserScan taken now, stamped with the sim time."""
-        from ..laser import fill_laserscan
+        from ode_sim.ros.convert import fill_laserscan
         ranges, intensities = self.measure()
         return fill_laserscan(None, self.laser, ranges, intensities, stamp=self.ctx.now(),
                               frame=self.frame_id)

@@ -14,7 +14,7 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .transforms import Pose
+from ode_sim.description.transforms import Pose
 
 
 class ModelError(Exception):

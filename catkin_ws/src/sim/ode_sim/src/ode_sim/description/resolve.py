@@ -9,7 +9,7 @@ then the ode_sim package directory (so `worlds/empty.world` is ode_sim's `worlds
 import os
 import xml.etree.ElementTree as ET
 
-from .model import ModelError
+from ode_sim.description.model import ModelError
 
 _PKG_DIR_CACHE = []
 
@@ -19,7 +19,7 @@ def package_dir():
     if _PKG_DIR_CACHE:
         return _PKG_DIR_CACHE[0]
     here = os.path.dirname(os.path.abspath(__file__))
-    candidate = os.path.dirname(os.path.dirname(here))
+    candidate = os.path.dirname(os.path.dirname(os.path.dirname(here)))   # src/ode_sim/description
     found = None
     if os.path.isfile(os.path.join(candidate, 'package.xml')):
         found = candidate

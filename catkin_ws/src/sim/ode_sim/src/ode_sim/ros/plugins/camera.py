@@ -55,9 +55,9 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
-from .base import Plugin
-from .rosio import publisher
-from .laser import sensor_frame_name, sensor_namespace, sensor_world_pose
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.rosio import publisher
+from ode_sim.ros.plugins.laser import sensor_frame_name, sensor_namespace, sensor_world_pose
 
 
 #: <image><format> -> (encoding, channels, bytes per channel)
@@ -286,7 +286,7 @@ class CameraPlugin(Plugin):
                           'double check to see that focal_length = width / (2.0 * tan(HFOV/2.0)), '
                           'the expected focal_length value is [%f]'
                           % (self.label, focal, sensor.name, self.width, self.hfov, computed))
-        from ..render import camera_info_matrix
+        from ode_sim.engine.render import camera_info_matrix
         self.K, self.P = camera_info_matrix(self.width, self.height, self.hfov,
                                             cx=cx or None, cy=cy or None, focal=focal or None,
                                             hack_baseline=baseline)

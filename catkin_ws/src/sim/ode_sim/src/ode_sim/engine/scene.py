@@ -4,8 +4,8 @@ renderer (visuals); static shapes keep a fixed pose."""
 from dataclasses import dataclass, field
 from typing import Callable, Optional, Tuple
 
-from .model import Geometry
-from .transforms import Pose
+from ode_sim.description.model import Geometry
+from ode_sim.description.transforms import Pose
 
 
 @dataclass(eq=False)

@@ -43,7 +43,7 @@ import math
 
 import numpy as np
 
-from .model import ModelError
+from ode_sim.description.model import ModelError
 
 KINDS = ('box', 'sphere', 'cylinder', 'plane', 'mesh')
 
@@ -838,5 +838,5 @@ def scan_directions(sensor_params):
     """Unit ray directions (N, 3) in the sensor frame, in Gazebo's order: for each vertical
     sample (outer loop, pitch from v_min_angle to v_max_angle) each horizontal sample (yaw
     from min_angle to max_angle, both ends included). See laser.py for the rules."""
-    from .laser import scan_directions as directions
+    from ode_sim.engine.laser import scan_directions as directions
     return directions(sensor_params)

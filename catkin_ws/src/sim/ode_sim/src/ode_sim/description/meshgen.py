@@ -12,7 +12,7 @@ import struct
 
 import numpy as np
 
-from .transforms import Pose
+from ode_sim.description.transforms import Pose
 
 # STL coordinates are rounded to this many decimals (metres) before the float32 cast, so that
 # last-bit differences of sin/cos between machines do not change the bytes written.

@@ -31,8 +31,8 @@ import threading
 
 import numpy as np
 
-from .model import ModelError
-from .tessellate import tessellate
+from ode_sim.description.model import ModelError
+from ode_sim.engine.tessellate import tessellate
 
 MAX_LIGHTS = 8
 SPECULAR = 0.2          # material specular factor

@@ -4,7 +4,7 @@ ODE) and of gazebo_ros_laser, which turns its scan into a sensor_msgs/LaserScan.
 `LaserModel(sensor_params)` holds a <sensor type="ray"> (or "gpu_ray") description;
 `.directions` are its rays in the sensor frame, `.scan(caster, sensor_pose)` casts them and
 `.to_ranges(distances, retro)` turns raw hit distances into the published ranges and
-intensities. `fill_laserscan()` fills the ROS message.
+intensities. ode_sim.ros.convert.fill_laserscan() fills the ROS message.
 
 Rules, with where they come from (gazebo-classic, gazebo11 era unless noted):
 
@@ -40,7 +40,7 @@ Ranges (RaySensor::UpdateImpl)
     quantise ranges with it. We do the same by default; LaserModel(quantize=True) rounds
     finite ranges to multiples of it (after noise, before the clamp) for those who want it.
 
-Parameters (Sensor.params as ode_sim.sdf fills them, or a dict; SDF defaults when missing):
+Parameters (Sensor.params as ode_sim.description.sdf fills them, or a dict; SDF defaults when missing):
   samples resolution min_angle max_angle, v_samples v_resolution v_min_angle v_max_angle,
   range_min range_max range_resolution, noise_type noise_mean noise_stddev noise_bias_mean
   noise_bias_stddev noise_precision. Bad values raise ModelError naming the sensor.
@@ -65,7 +65,7 @@ import math
 
 import numpy as np
 
-from .model import ModelError
+from ode_sim.description.model import ModelError
 
 _DEFAULTS = {
     'samples': 640, 'resolution': 1.0, 'min_angle': 0.0, 'max_angle': 0.0,
@@ -294,25 +294,3 @@ class LaserModel:
         inten = 0.25 * (ret[np.ix_(va, ha)] + ret[np.ix_(va, hb)] + ret[np.ix_(vb, ha)]
                         + ret[np.ix_(vb, hb)])
         return rng, inten
-
-
-def fill_laserscan(msg, model, ranges, intensities, stamp=None, frame=None):
-    """Fill a sensor_msgs/LaserScan (or any object with its fields; None: a new LaserScan)
-    the way gazebo_ros_laser does. Returns the message."""
-    if msg is None:
-        from sensor_msgs.msg import LaserScan
-        msg = LaserScan()
-    if stamp is not None:
-        msg.header.stamp = stamp
-    if frame is not None:
-        msg.header.frame_id = frame
-    msg.angle_min = float(model.min_angle)
-    msg.angle_max = float(model.max_angle)
-    msg.angle_increment = float(model.angle_increment)
-    msg.time_increment = 0.0
-    msg.scan_time = 0.0
-    msg.range_min = float(model.range_min)
-    msg.range_max = float(model.range_max)
-    msg.ranges = np.asarray(ranges, dtype=float).tolist()
-    msg.intensities = np.asarray(intensities, dtype=float).tolist()
-    return msg

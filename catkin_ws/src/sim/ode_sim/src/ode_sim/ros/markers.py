@@ -1,19 +1,13 @@
 """The scene as RViz markers (there is no Gazebo GUI): one Marker per visual shape."""
 import numpy as np
-from geometry_msgs.msg import Point, Pose as PoseMsg
+from geometry_msgs.msg import Point
 from std_msgs.msg import ColorRGBA
 from visualization_msgs.msg import Marker, MarkerArray
 
-from .transforms import Pose, quat_from_axis_angle
+from ode_sim.description.transforms import Pose, quat_from_axis_angle
+from ode_sim.ros.convert import pose_msg
 
 NS = 'ode_sim'
-
-
-def pose_msg(pose):
-    m = PoseMsg()
-    m.position.x, m.position.y, m.position.z = (float(v) for v in pose.p)
-    m.orientation.x, m.orientation.y, m.orientation.z, m.orientation.w = (float(v) for v in pose.q)
-    return m
 
 
 def _marker_body(shape):

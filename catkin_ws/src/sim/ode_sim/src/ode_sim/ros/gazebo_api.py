@@ -14,23 +14,16 @@ import numpy as np
 import rospy
 from gazebo_msgs import msg as gm
 from gazebo_msgs import srv as gs
-from geometry_msgs.msg import Pose as PoseMsg, Twist, Vector3
+from geometry_msgs.msg import Vector3
 from std_srvs.srv import Empty, EmptyResponse
 from visualization_msgs.msg import MarkerArray
 
-from .markers import SceneMarkers, pose_msg
-from .model import ModelError
-from .node import model_pose_from_request
-from .transforms import Pose
+from ode_sim.ros.convert import pose_from_msg, pose_msg, twist_msg, vector
+from ode_sim.ros.markers import SceneMarkers
+from ode_sim.description.model import ModelError
+from ode_sim.description.transforms import Pose
 
 WORLD_FRAMES = ('', 'world', 'map', '/map')
-
-
-def twist_msg(lin, ang):
-    t = Twist()
-    t.linear = Vector3(*[float(v) for v in lin])
-    t.angular = Vector3(*[float(v) for v in ang])
-    return t
 
 
 def inject_namespace(desc, robot_namespace):
@@ -133,10 +126,7 @@ class GazeboApi:
             keep = []
             for joint, eff, end in self._efforts:
                 if end is None or t <= end:
-                    if joint.hinge:
-                        joint.joint.addTorque(eff)
-                    elif joint.slider:
-                        joint.joint.addForce(eff)
+                    joint.add_effort(eff)
                     keep.append((joint, eff, end))
             self._efforts = keep
         if self.model_states.get_num_connections() > 0:
@@ -178,7 +168,7 @@ class GazeboApi:
 
     # ----------------------------------------------------------------- spawning
     def _spawn(self, req, fmt):
-        from . import sdf, urdf
+        from ode_sim.description import sdf, urdf
         name = req.model_name
         if name in self.physics.models:
             return gs.SpawnModelResponse(False, 'SpawnModel: Failure - entity already exists.')
@@ -194,7 +184,7 @@ class GazeboApi:
             else:
                 desc = sdf.parse_sdf_model(req.model_xml, source, name=name)
             desc.name = name
-            desc.pose = ref[0] * model_pose_from_request(req.initial_pose)
+            desc.pose = ref[0] * pose_from_msg(req.initial_pose)
             desc.source = desc.source or source
             inject_namespace(desc, req.robot_namespace)
             self.node.add_model(desc)
@@ -258,7 +248,7 @@ class GazeboApi:
                            % state.reference_frame)
         rpose = ref[0]
         with self.node.lock:
-            m.set_pose(rpose * model_pose_from_request(state.pose))
+            m.set_pose(rpose * pose_from_msg(state.pose))
             t = state.twist
             m.set_twist(rpose.rotate([t.linear.x, t.linear.y, t.linear.z]),
                         rpose.rotate([t.angular.x, t.angular.y, t.angular.z]))
@@ -321,13 +311,9 @@ class GazeboApi:
             return False, 'SetLinkState: reference frame [%s] not found' % state.reference_frame
         rpose = ref[0]
         with self.node.lock:
-            target = rpose * model_pose_from_request(state.pose) * link.com
-            link.body.setPosition(tuple(target.p))
-            link.body.setQuaternion((target.q[3], target.q[0], target.q[1], target.q[2]))
             t = state.twist
-            link.body.setLinearVel(tuple(rpose.rotate([t.linear.x, t.linear.y, t.linear.z])))
-            link.body.setAngularVel(tuple(rpose.rotate([t.angular.x, t.angular.y,
-                                                        t.angular.z])))
+            link.set_state(rpose * pose_from_msg(state.pose), rpose.rotate(vector(t.linear)),
+                           rpose.rotate(vector(t.angular)))
         return True, 'SetLinkState: success'
 
     def set_link_state(self, req):
@@ -417,8 +403,7 @@ class GazeboApi:
         res.time_step = p.max_step_size
         res.pause = self.node.paused
         res.max_update_rate = p.real_time_update_rate
-        g = self.physics.world.getGravity()
-        res.gravity = Vector3(*g)
+        res.gravity = Vector3(*self.physics.gravity)
         o = res.ode_config
         o.auto_disable_bodies = False
         o.sor_pgs_precon_iters = 0
@@ -443,22 +428,19 @@ class GazeboApi:
         with self.node.lock:
             p.max_step_size = req.time_step
             p.real_time_update_rate = max(0.0, req.max_update_rate)
-            self.physics.dt = req.time_step
-            self.physics.world.setGravity((req.gravity.x, req.gravity.y, req.gravity.z))
             if o.sor_pgs_iters:
                 p.iters = int(o.sor_pgs_iters)
-                self.physics.world.setQuickStepNumIterations(p.iters)
             p.sor = o.sor_pgs_w or p.sor
             p.cfm, p.erp = o.cfm, o.erp
-            self.physics.world.setCFM(o.cfm)
-            self.physics.world.setERP(o.erp)
             p.contact_surface_layer = o.contact_surface_layer
             p.contact_max_correcting_vel = o.contact_max_correcting_vel
-            self.physics.world.setContactSurfaceLayer(o.contact_surface_layer)
-            self.physics.world.setContactMaxCorrectingVel(o.contact_max_correcting_vel)
             if o.max_contacts:
                 p.max_contacts = int(o.max_contacts)
-                self.physics.max_contacts = p.max_contacts
+            self.physics.set_properties(
+                time_step=req.time_step, gravity=vector(req.gravity), iters=p.iters,
+                cfm=o.cfm, erp=o.erp, contact_surface_layer=o.contact_surface_layer,
+                contact_max_correcting_vel=o.contact_max_correcting_vel,
+                max_contacts=p.max_contacts)
             self.node._resync = True
         return gs.SetPhysicsPropertiesResponse(True, 'SetPhysicsProperties: set')
 

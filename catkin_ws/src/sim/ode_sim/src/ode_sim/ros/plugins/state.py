@@ -13,17 +13,18 @@ joint_state_publisher (gazebo_ros_joint_state_publisher.cpp): `jointName` (comma
 `updateRate` (100 Hz), `robotNamespace` (default: the model name). Publishes
 sensor_msgs/JointState on `joint_states` (position, velocity, and the applied effort).
 
-This module also holds small message helpers the other plugins share (parse_vector,
-fill_pose, fill_vector, transform_msg, gaussian).
+This module also holds small helpers the other plugins share (parse_vector, gaussian);
+message conversions are in ode_sim.ros.convert.
 """
 import random
 
 import numpy as np
 import rospy
 
-from .base import Plugin
-from .rosio import close, publisher, subscribed
-from ..transforms import Pose, quat_from_rpy
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.convert import fill_pose, fill_vector
+from ode_sim.ros.plugins.rosio import close, publisher, subscribed
+from ode_sim.description.transforms import Pose, quat_from_rpy
 
 
 def parse_vector(plugin, tag, default=(0.0, 0.0, 0.0), warn=False):
@@ -38,29 +39,6 @@ def parse_vector(plugin, tag, default=(0.0, 0.0, 0.0), warn=False):
     if len(v) != 3:
         raise plugin.error("<%s> must be three numbers, got %r" % (tag, text))
     return np.array(v, dtype=float)
-
-
-def fill_pose(msg_pose, pose):
-    msg_pose.position.x, msg_pose.position.y, msg_pose.position.z = (float(v) for v in pose.p)
-    q = msg_pose.orientation
-    q.x, q.y, q.z, q.w = (float(v) for v in pose.q)
-
-
-def fill_vector(msg_vec, v):
-    msg_vec.x, msg_vec.y, msg_vec.z = (float(x) for x in v)
-
-
-def transform_msg(stamp, parent, child, pose):
-    from geometry_msgs.msg import TransformStamped
-    t = TransformStamped()
-    t.header.stamp = stamp
-    t.header.frame_id = parent
-    t.child_frame_id = child
-    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = \
-        (float(v) for v in pose.p)
-    r = t.transform.rotation
-    r.x, r.y, r.z, r.w = (float(v) for v in pose.q)
-    return t
 
 
 def gaussian(rng, sigma):

@@ -1,4 +1,4 @@
-"""The physics world: model descriptions (ode_sim.model) become ODE bodies, geoms and joints.
+"""The physics world: model descriptions (ode_sim.description.model) become ODE bodies, geoms and joints.
 
 Conventions as Gazebo classic on ODE:
 - one ODE body per link, placed at the link's centre of mass (ODE needs the mass centre at the
@@ -12,7 +12,7 @@ Conventions as Gazebo classic on ODE:
   friction value (used only while no velocity/position command drives the joint);
 - static models (and the plane) have geoms without bodies.
 
-No ROS here: the node (ode_sim.node) owns time pacing, plugins and the ROS API.
+No ROS here: the node (ode_sim.ros.node) owns time pacing, plugins and the ROS API.
 """
 import ctypes
 import math
@@ -20,9 +20,9 @@ import math
 import numpy as np
 import ode
 
-from .model import Geometry, ModelError
-from .scene import ShapeInstance
-from .transforms import Pose, quat_from_axis_angle, quat_to_matrix
+from ode_sim.description.model import Geometry, ModelError
+from ode_sim.engine.scene import ShapeInstance
+from ode_sim.description.transforms import Pose, quat_from_axis_angle, quat_to_matrix
 
 ENV = ode.environment
 
@@ -107,6 +107,17 @@ class SimLink:
             self.wake()
             self.body.addTorque(tuple(torque))
 
+    def set_state(self, pose, linear, angular):
+        """Move the link frame to `pose` (world) with this world twist of its COM; wakes it."""
+        if self.body is None:
+            return
+        target = pose * self.com
+        self.wake()
+        self.body.setPosition(tuple(float(v) for v in target.p))
+        self.body.setQuaternion(_ode_q(target.q))
+        self.body.setLinearVel(tuple(float(v) for v in linear))
+        self.body.setAngularVel(tuple(float(v) for v in angular))
+
 
 class SimJoint:
     """A joint between two links (or a link and the world)."""
@@ -161,6 +172,13 @@ class SimJoint:
         ax = self.joint.getAxis()
         v = fb[1] if self.hinge else fb[0]
         return v[0] * ax[0] + v[1] * ax[1] + v[2] * ax[2] + self._applied
+
+    def add_effort(self, effort):
+        """Add a torque (hinge) or force (slider) along the axis for the next step."""
+        if self.hinge:
+            self.joint.addTorque(float(effort))
+        elif self.slider:
+            self.joint.addForce(float(effort))
 
     def _motor(self, vel, fmax):
         self.joint.setParam(P_VEL, vel)
@@ -364,7 +382,7 @@ def _forward_kinematics(desc, q):
 
 
 class PhysicsWorld:
-    """ODE world + spaces + contacts, built from ode_sim.model descriptions."""
+    """ODE world + spaces + contacts, built from ode_sim.description.model descriptions."""
 
     def __init__(self, physics, gravity=(0.0, 0.0, -9.8)):
         self.physics = physics
@@ -388,6 +406,9 @@ class PhysicsWorld:
         self.models = {}
         self.time = 0.0
         self.steps = 0
+        # time = _t0 + (steps - _steps0) * dt: exact multiples of the step, and it accumulates
+        # (never jumps) when set_properties() changes the step
+        self._t0, self._steps0 = 0.0, 0
         self.max_contacts = max(1, int(physics.max_contacts))
         self._surf = {}                 # geom -> (mu1, mu2, kp, kd, fdir1, bounce, model, body)
         self._dyn_spaces = []           # spaces of dynamic models
@@ -713,7 +734,7 @@ class PhysicsWorld:
                 link.accel = (v - link.prev_vel) / dt
                 link.prev_vel = v
             self.steps += 1
-            self.time = self.steps * dt
+            self.time = self._t0 + (self.steps - self._steps0) * dt
             if self.steps % 100 == 0:
                 self._sort_sleepers()
 
@@ -743,6 +764,38 @@ class PhysicsWorld:
     def reset_time(self):
         self.steps = 0
         self.time = 0.0
+        self._t0, self._steps0 = 0.0, 0
+
+    @property
+    def gravity(self):
+        return tuple(self.world.getGravity())
+
+    def set_properties(self, time_step=None, gravity=None, iters=None, cfm=None, erp=None,
+                       contact_surface_layer=None, contact_max_correcting_vel=None,
+                       max_contacts=None):
+        """Everything /gazebo/set_physics_properties can change; None leaves a value alone.
+        Simulated time keeps accumulating across a change of the step."""
+        if time_step is not None:
+            if not time_step > 0:
+                raise ValueError('time_step must be positive, got %r' % (time_step,))
+            self._t0, self._steps0 = self.time, self.steps
+            self.dt = float(time_step)
+        if gravity is not None:
+            self.world.setGravity(tuple(float(v) for v in gravity))
+            for m in self.models.values():
+                m.wake()
+        if iters is not None:
+            self.world.setQuickStepNumIterations(int(iters))
+        if cfm is not None:
+            self.world.setCFM(float(cfm))
+        if erp is not None:
+            self.world.setERP(float(erp))
+        if contact_surface_layer is not None:
+            self.world.setContactSurfaceLayer(float(contact_surface_layer))
+        if contact_max_correcting_vel is not None:
+            self.world.setContactMaxCorrectingVel(float(contact_max_correcting_vel))
+        if max_contacts is not None:
+            self.max_contacts = max(1, int(max_contacts))
 
     # ----------------------------------------------------------------- shapes
     @property

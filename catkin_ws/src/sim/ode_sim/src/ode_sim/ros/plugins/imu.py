@@ -25,10 +25,11 @@ import random
 import numpy as np
 import rospy
 
-from .base import Plugin
-from .rosio import close, publisher, service, subscribed
-from .state import fill_vector, gaussian, parse_vector
-from ..transforms import Pose, quat_from_rpy, quat_multiply, quat_conjugate, quat_to_matrix
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.rosio import close, publisher, service, subscribed
+from ode_sim.ros.convert import fill_vector
+from ode_sim.ros.plugins.state import gaussian, parse_vector
+from ode_sim.description.transforms import Pose, quat_from_rpy, quat_multiply, quat_conjugate, quat_to_matrix
 
 
 def _fill_cov(msg, gn2):
@@ -48,7 +49,7 @@ class _Imu(Plugin):
         self.pub = None
 
     def gravity(self):
-        return np.array(self.ctx.physics.world.getGravity(), dtype=float)
+        return np.array(self.ctx.physics.gravity, dtype=float)
 
     def frame_state(self):
         """(world rotation quaternion of the IMU frame, angular velocity in that frame,
