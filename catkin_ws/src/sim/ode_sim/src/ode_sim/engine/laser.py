@@ -40,7 +40,8 @@ Ranges (RaySensor::UpdateImpl)
     quantise ranges with it. We do the same by default; LaserModel(quantize=True) rounds
     finite ranges to multiples of it (after noise, before the clamp) for those who want it.
 
-Parameters (Sensor.params as ode_sim.description.sdf fills them, or a dict; SDF defaults when missing):
+Parameters (Sensor.params as ode_sim.description.sdf fills them, or a dict; SDF defaults when
+missing):
   samples resolution min_angle max_angle, v_samples v_resolution v_min_angle v_max_angle,
   range_min range_max range_resolution, noise_type noise_mean noise_stddev noise_bias_mean
   noise_bias_stddev noise_precision. Bad values raise ModelError naming the sensor.

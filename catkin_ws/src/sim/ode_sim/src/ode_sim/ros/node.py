@@ -13,6 +13,7 @@ from ode_sim.ros import plugins as plugin_registry
 from ode_sim.description.model import ModelError
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import RosIO, WallClock
 
 
 class Spawner:
@@ -90,7 +91,8 @@ class SimNode:
             self.tf = tf2_ros.TransformBroadcaster()
         except Exception:           # pragma: no cover - tf2_ros is a dependency
             self.tf = None
-        self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf)
+        self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf, io=RosIO(),
+                                 wall=WallClock())
         self.spawner = Spawner(self)
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
         freq = float(rospy.get_param('gazebo/pub_clock_frequency', 0) or 0)
@@ -164,6 +166,8 @@ class SimNode:
     # ----------------------------------------------------------------- loop
     def publish_clock(self, force=False):
         t = self.physics.time
+        if not force and self.clock_pub.get_num_connections() == 0:
+            return                      # nobody listens: no serialisation, no GIL hand-off
         if not force:
             if self.clock_period > 0:
                 if self._last_clock >= 0 and t - self._last_clock < self.clock_period - 1e-9:

@@ -23,6 +23,7 @@ import math
 import rospy
 
 from ode_sim.description.model import ModelError
+from ode_sim.ros.plugins.rosio import MemoryIO, WallClock
 
 
 class PluginContext:
@@ -31,13 +32,18 @@ class PluginContext:
     world        ode_sim.description.model.World (lights, scene, physics settings)
     lockstep     bool: the ros_control bridge waits for each period's command
     tf           tf2_ros.TransformBroadcaster (shared)
+    io           where plugins get publishers / subscribers / services (rosio.RosIO in the
+                 node; default rosio.MemoryIO: no master needed)
+    wall         the wall clock of wall-time waits (rosio.WallClock; tests: rosio.FakeClock)
     """
 
-    def __init__(self, physics, world, lockstep=False, tf=None):
+    def __init__(self, physics, world, lockstep=False, tf=None, io=None, wall=None):
         self.physics = physics
         self.world = world
         self.lockstep = lockstep
         self.tf = tf
+        self.io = io if io is not None else MemoryIO()
+        self.wall = wall if wall is not None else WallClock()
         self._raycaster = None
         self._ray_version = -1
         self._renderers = []

@@ -56,7 +56,6 @@ import rospy
 from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
 
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import publisher
 from ode_sim.ros.plugins.laser import sensor_frame_name, sensor_namespace, sensor_world_pose
 
 
@@ -300,8 +299,8 @@ class CameraPlugin(Plugin):
 
         self.image_topic = under(p('imageTopicName', 'image_raw').strip())
         self.info_topic = under(p('cameraInfoTopicName', 'camera_info').strip())
-        self.image_pub = publisher(self.image_topic, Image, queue_size=2)
-        self.info_pub = publisher(self.info_topic, CameraInfo, queue_size=2)
+        self.image_pub = self.ctx.io.publisher(self.image_topic, Image, queue_size=2)
+        self.info_pub = self.ctx.io.publisher(self.info_topic, CameraInfo, queue_size=2)
         self.depth_pub = self.depth_info_pub = self.cloud_pub = None
         if self.depth_outputs:
             self.depth_topic = under(p('depthImageTopicName', 'depth/image_raw').strip())
@@ -311,9 +310,10 @@ class CameraPlugin(Plugin):
             self.cutoff = p('pointCloudCutoff', 0.4, float)
             self.cutoff_max = (p('pointCloudCutoffMax', self.cutoff_max_default, float)
                                if self.cutoff_max_default is not None else None)
-            self.depth_pub = publisher(self.depth_topic, Image, queue_size=1)
-            self.depth_info_pub = publisher(self.depth_info_topic, CameraInfo, queue_size=1)
-            self.cloud_pub = publisher(self.cloud_topic, PointCloud2, queue_size=1)
+            self.depth_pub = self.ctx.io.publisher(self.depth_topic, Image, queue_size=1)
+            self.depth_info_pub = self.ctx.io.publisher(self.depth_info_topic, CameraInfo,
+                                                        queue_size=1)
+            self.cloud_pub = self.ctx.io.publisher(self.cloud_topic, PointCloud2, queue_size=1)
 
         self.link_obj = self.link(sensor.link)
         self.set_rate(sensor.update_rate)

@@ -42,18 +42,15 @@ import os
 import signal
 import subprocess
 import threading
-import time
 
 import rospy
 
+from ode_sim.engine.joint_control import (  # noqa: F401 (EFFORT ... : the bridge's interfaces)
+    COMMAND_INTERFACES, EFFORT, POSITION, STATE, VELOCITY, BridgeJoint, Pid, apply_commands,
+    bare_interface)
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import close, publisher, ros_up, subscriber
+from ode_sim.ros.plugins.rosio import close
 
-EFFORT = 'EffortJointInterface'
-VELOCITY = 'VelocityJointInterface'
-POSITION = 'PositionJointInterface'
-STATE = 'JointStateInterface'
-COMMAND_INTERFACES = (EFFORT, VELOCITY, POSITION)
 DEFAULT_SIM_TYPE = 'gazebo_ros_control/DefaultRobotHWSim'
 DEFAULT_LOCKSTEP_TIMEOUT = 1.0
 NODE_PACKAGE = 'gazebo_ros_control'
@@ -62,94 +59,6 @@ NODE_STOP_TIMEOUT = 5.0             # wall seconds between SIGINT and SIGKILL
 INPROCESS_LIBRARY = 'libgazebo_ros_control_inprocess.so'
 NODE_MODES = {'true': 'process', '1': 'process', 'process': 'process', 'inprocess': 'inprocess',
               'false': None, '0': None}
-
-
-def bare_interface(name):
-    return name.strip().rsplit('/', 1)[-1]
-
-
-def clamp(v, lo, hi):
-    if lo is not None and v < lo:
-        return lo
-    if hi is not None and v > hi:
-        return hi
-    return v
-
-
-def shortest_angular_distance(a, b):
-    """b - a wrapped to [-pi, pi]."""
-    d = math.fmod(b - a + math.pi, 2 * math.pi)
-    if d < 0:
-        d += 2 * math.pi
-    return d - math.pi
-
-
-class Pid:
-    """control_toolbox::Pid as used by DefaultRobotHWSim: p, i, d, i_clamp (the integral term
-    is limited to [-|i_clamp|, |i_clamp|]; i_clamp_min / i_clamp_max override), d on the error."""
-
-    def __init__(self, p, i=0.0, d=0.0, i_clamp=0.0, i_clamp_min=None, i_clamp_max=None):
-        self.p, self.i, self.d = float(p), float(i), float(d)
-        self.i_max = abs(float(i_clamp)) if i_clamp_max is None else abs(float(i_clamp_max))
-        self.i_min = -abs(float(i_clamp)) if i_clamp_min is None else -abs(float(i_clamp_min))
-        self.reset()
-
-    def reset(self):
-        self.i_error = 0.0
-        self.last_error = 0.0
-
-    def compute(self, error, dt):
-        if dt <= 0 or not math.isfinite(error):
-            return 0.0
-        self.i_error += dt * error
-        i_term = clamp(self.i * self.i_error, self.i_min, self.i_max)
-        d_term = self.d * (error - self.last_error) / dt
-        self.last_error = error
-        return self.p * error + i_term + d_term
-
-
-class BridgeJoint:
-    """One transmission joint: the sim joint, its interface, limits, PID and command."""
-
-    def __init__(self, joint, interface, reduction):
-        self.name = joint.name
-        self.joint = joint
-        self.interface = interface          # one of COMMAND_INTERFACES, or STATE
-        self.reduction = reduction
-        d = joint.desc
-        limited = joint.type in ('revolute', 'prismatic')
-        self.lower = d.lower if limited and d.lower is not None and d.upper is not None \
-            and d.upper >= d.lower else None
-        self.upper = d.upper if self.lower is not None else None
-        self.effort = joint.limit_effort
-        self.velocity = joint.limit_velocity
-        self.pid = None
-        self.command = 0.0
-        self.hold = None                    # position held while the e-stop is active
-        self.wraps = joint.hinge            # ODE reports hinge angles in [-pi, pi]
-        self._pos = None
-
-    def position(self):
-        """The joint position, hinge angles unwrapped (as DefaultRobotHWSim::readSim); call
-        at least once per step so that no turn is missed."""
-        raw = self.joint.position()
-        if not self.wraps or self._pos is None:
-            self._pos = raw
-        else:
-            self._pos += shortest_angular_distance(self._pos, raw)
-        return self._pos
-
-    def description(self):
-        """The entry of NS/ode_sim/joints (limits only where the URDF has them)."""
-        out = {'name': self.name, 'interface': self.interface, 'reduction': float(self.reduction)}
-        if self.lower is not None:
-            out['lower'] = float(self.lower)
-            out['upper'] = float(self.upper)
-        if self.effort is not None:
-            out['effort'] = float(self.effort)
-        if self.velocity is not None:
-            out['velocity'] = float(self.velocity)
-        return out
 
 
 class GazeboRosControl(Plugin):
@@ -204,22 +113,23 @@ class GazeboRosControl(Plugin):
         from sensor_msgs.msg import JointState
         self.state_topic = self.topic('ode_sim/joint_states')
         self.command_topic = self.topic('ode_sim/joint_commands')
-        self.state_pub = publisher(self.state_topic, JointState, queue_size=10)
-        self.cmd_sub = subscriber(self.command_topic, JointState, self.on_command, queue_size=10,
-                                  tcp_nodelay=True)
+        self.state_pub = self.ctx.io.publisher(self.state_topic, JointState, queue_size=10)
+        self.cmd_sub = self.ctx.io.subscriber(self.command_topic, JointState, self.on_command,
+                                              queue_size=10, tcp_nodelay=True)
         self.estop_sub = None
         if self.estop_topic:
             from std_msgs.msg import Bool
-            self.estop_sub = subscriber(self.topic(self.estop_topic), Bool, self.on_estop)
-        if ros_up():
+            self.estop_sub = self.ctx.io.subscriber(self.topic(self.estop_topic), Bool,
+                                                    self.on_estop)
+        if self.ctx.io.live:
             self._load_ros_params()
         if not self.joints:
             rospy.logwarn("gazebo_ros_control: model '%s' has no <transmission>: nothing to "
                           "control" % model.name)
         rospy.loginfo("Starting gazebo_ros_control plugin in namespace: %s" % (self.ns or '/'))
-        if ros_up() and self.node_mode == 'process':
+        if self.ctx.io.live and self.node_mode == 'process':
             self._start_controller_node()
-        elif ros_up() and self.node_mode == 'inprocess':
+        elif self.ctx.io.live and self.node_mode == 'inprocess':
             self._start_inprocess()
 
     # ------------------------------------------------------------------ setup
@@ -450,11 +360,11 @@ class GazeboRosControl(Plugin):
                 self.synced += 1
                 return
             self.waits += 1
-            deadline = time.monotonic() + self.lockstep_timeout
+            deadline = self.ctx.wall.now() + self.lockstep_timeout
             while self._cmd_stamp < want and not self._closing:
                 if not self._connected():   # the controller node left: nothing to wait for
                     return
-                left = deadline - time.monotonic()
+                left = deadline - self.ctx.wall.now()
                 if left <= 0:
                     self._stalled = True
                     self.timeouts += 1
@@ -462,47 +372,13 @@ class GazeboRosControl(Plugin):
                                   "%.1f s; stepping on with the last command"
                                   % (stamp.to_sec(), self.command_topic, self.lockstep_timeout))
                     return
-                self._cond.wait(min(left, 0.2))
+                self.ctx.wall.wait(self._cond, min(left, 0.2))
             if self._cmd_stamp >= want:
                 self.synced += 1
 
     def apply(self, dt):
         """Write the commands to the joints (every physics step, as writeSim)."""
-        estop = self.estop
-        for j in self.joints:
-            iface = j.interface
-            if iface == STATE:
-                j.position()
-                continue
-            sj = j.joint
-            q = j.position()
-            if estop:
-                if j.hold is None:
-                    j.hold = q
-            else:
-                j.hold = None
-            cmd = j.command
-            if iface == EFFORT:
-                sj.set_effort(0.0 if estop else clamp(cmd, _neg(j.effort), j.effort))
-            elif iface == VELOCITY:
-                v = 0.0 if estop else clamp(cmd, _neg(j.velocity), j.velocity)
-                if j.pid is not None:
-                    effort = j.pid.compute(v - sj.velocity(), dt)
-                    sj.set_effort(clamp(effort, _neg(j.effort), j.effort))
-                else:
-                    sj.set_velocity(v, fmax=j.effort)
-            else:
-                p = j.hold if estop else clamp(cmd, j.lower, j.upper)
-                if j.pid is not None:
-                    if sj.type == 'continuous':
-                        err = shortest_angular_distance(q, p)
-                    else:
-                        err = p - q
-                    effort = j.pid.compute(err, dt)
-                    sj.set_effort(clamp(effort, _neg(j.effort), j.effort))
-                else:
-                    # the motor servoes the raw (wrapped) angle: aim at the same offset
-                    sj.set_position_target(sj.position() + (p - q))
+        apply_commands(self.joints, self.estop, dt)
 
     def reset(self):
         super().reset()
@@ -520,10 +396,6 @@ class GazeboRosControl(Plugin):
         self._stop_controller_node()
         self._stop_inprocess()
         close(self.state_pub, self.cmd_sub, self.estop_sub)
-
-
-def _neg(v):
-    return None if v is None else -v
 
 
 PLUGINS = {

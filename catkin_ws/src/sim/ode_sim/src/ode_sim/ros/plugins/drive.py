@@ -27,7 +27,7 @@ import math
 import rospy
 
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import close, publisher, subscriber
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close
 from ode_sim.ros.convert import fill_pose, transform_msg
 from ode_sim.description.transforms import Pose, quat_from_rpy
 
@@ -75,7 +75,8 @@ class _Drive(Plugin):
 
     def _subscribe(self, topic):
         from geometry_msgs.msg import Twist
-        self.cmd_sub = subscriber(self.topic(topic), Twist, self.on_cmd_vel, queue_size=1)
+        self.cmd_sub = self.ctx.io.subscriber(self.topic(topic), Twist, self.on_cmd_vel,
+                                              queue_size=1)
 
     def on_cmd_vel(self, msg):
         self.cmd = (float(msg.linear.x), float(msg.angular.z))
@@ -152,11 +153,13 @@ class DiffDrive(_Drive):
         from sensor_msgs.msg import JointState
         self.joint_state_pub = None
         if self.publish_wheel_joint_state:
-            self.joint_state_pub = publisher(self.topic('joint_states'), JointState, 1000)
+            self.joint_state_pub = self.ctx.io.publisher(self.topic('joint_states'), JointState,
+                                                         1000)
         self._subscribe(self.command_topic)
         self.odom_pub = None
         if self.publish_tf:
-            self.odom_pub = publisher(self.topic(self.odometry_topic), Odometry, 1)
+            self.odom_pub = self.ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
+                                                SENSOR_QUEUE)
 
     def _wheel(self, tag, default):
         name = self.param(tag, default)
@@ -313,7 +316,8 @@ class SkidSteerDrive(_Drive):
         self._setup_base(base_frame, odom_frame)
         from nav_msgs.msg import Odometry
         self._subscribe(self.command_topic)
-        self.odom_pub = publisher(self.topic(self.odometry_topic), Odometry, 1)
+        self.odom_pub = self.ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
+                                                SENSOR_QUEUE)
 
     def update(self):
         if not self.due():

@@ -26,10 +26,11 @@ import numpy as np
 import rospy
 
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import close, publisher, service, subscribed
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.ros.convert import fill_vector
 from ode_sim.ros.plugins.state import gaussian, parse_vector
-from ode_sim.description.transforms import Pose, quat_from_rpy, quat_multiply, quat_conjugate, quat_to_matrix
+from ode_sim.description.transforms import (Pose, quat_conjugate, quat_from_rpy, quat_multiply,
+                                            quat_to_matrix)
 
 
 def _fill_cov(msg, gn2):
@@ -91,8 +92,8 @@ class GazeboRosImu(_Imu):
         if self.topic_name:
             from sensor_msgs.msg import Imu
             from std_srvs.srv import Empty, EmptyResponse
-            self.pub = publisher(self.topic(self.topic_name), Imu, 1)
-            self.srv = service(self.topic(self.service_name), Empty,
+            self.pub = self.ctx.io.publisher(self.topic(self.topic_name), Imu, SENSOR_QUEUE)
+            self.srv = self.ctx.io.service(self.topic(self.service_name), Empty,
                                lambda req: EmptyResponse())
 
     def measure(self):
@@ -186,7 +187,7 @@ class GazeboRosImuSensor(_Imu):
         if self.initial_as_reference:
             self.reference_q = (link.pose() * local).q
         from sensor_msgs.msg import Imu
-        self.pub = publisher(self.topic_name, Imu, 1)
+        self.pub = self.ctx.io.publisher(self.topic_name, Imu, SENSOR_QUEUE)
 
     def measure(self):
         from sensor_msgs.msg import Imu

@@ -25,7 +25,7 @@ import rospy
 from sensor_msgs.msg import LaserScan
 
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import publisher
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE
 
 
 #: Gazebo's ray sensor does not exclude the link carrying it; True drops that link's shapes.
@@ -80,7 +80,8 @@ class LaserPlugin(Plugin):
                                                               warn=False).strip())
         topic = self.param('topicName', '/world', warn=False).strip()
         self.topic_name = self.topic(topic) if topic else ''
-        self.pub = publisher(self.topic_name, LaserScan, queue_size=1) if topic else None
+        self.pub = (self.ctx.io.publisher(self.topic_name, LaserScan, queue_size=SENSOR_QUEUE)
+                    if topic else None)
         self.link_obj = self.link(sensor.link)
         self.exclude = {(model.name, self.link_obj.name)} if EXCLUDE_OWN_LINK else None
         self.set_rate(sensor.update_rate)

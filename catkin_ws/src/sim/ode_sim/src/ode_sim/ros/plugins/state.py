@@ -23,7 +23,7 @@ import rospy
 
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.convert import fill_pose, fill_vector
-from ode_sim.ros.plugins.rosio import close, publisher, subscribed
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.description.transforms import Pose, quat_from_rpy
 
 
@@ -86,7 +86,8 @@ class P3D(Plugin):
         self.pub = None
         if self.active and self.topic_name:
             from nav_msgs.msg import Odometry
-            self.pub = publisher(self.topic(self.topic_name), Odometry, queue_size=1)
+            self.pub = self.ctx.io.publisher(self.topic(self.topic_name), Odometry,
+                                            queue_size=SENSOR_QUEUE)
 
     def _frame_state(self, link, name):
         pose = link.frame_pose(name)
@@ -143,7 +144,7 @@ class JointStatePublisher(Plugin):
         self.joints = [self.joint(n) for n in names]
         self.set_rate(self.param('updateRate', 100.0, float))
         from sensor_msgs.msg import JointState
-        self.pub = publisher(self.topic('joint_states'), JointState, queue_size=1000)
+        self.pub = self.ctx.io.publisher(self.topic('joint_states'), JointState, queue_size=1000)
 
     def measure(self):
         from sensor_msgs.msg import JointState

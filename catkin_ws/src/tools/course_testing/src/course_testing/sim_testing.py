@@ -27,9 +27,9 @@ def roslaunch(pkg, launch_file, args, env, log):
 
 
 def probe(args, env, timeout=120.0, proc=None):
-    """Run `python3 -m my_robot_simulation.sim_probe args...` and return its YAML output.
+    """Run `python3 -m course_testing.sim_probe args...` and return its YAML output.
     On failure the assertion names the probe and shows the end of `proc`'s log."""
-    cmd = ['/usr/bin/python3', '-m', 'my_robot_simulation.sim_probe'] + [str(a) for a in args]
+    cmd = ['/usr/bin/python3', '-m', 'course_testing.sim_probe'] + [str(a) for a in args]
     try:
         p = subprocess.run(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                            stdin=subprocess.DEVNULL, timeout=timeout, start_new_session=True)

@@ -1,9 +1,9 @@
 """Command-line probes of a running simulation, for the tests of the simulation packages and
 of the course tasks (each probe is a short-lived ROS node; it prints one line of YAML):
 
-    python3 -m my_robot_simulation.sim_probe model my_robot_model [--timeout 60]
-    python3 -m my_robot_simulation.sim_probe drive my_robot_model --topic /cmd_vel --vx 0.2 --seconds 2
-    python3 -m my_robot_simulation.sim_probe topic /scan [--timeout 60]
+    python3 -m course_testing.sim_probe model my_robot_model [--timeout 60]
+    python3 -m course_testing.sim_probe drive my_robot_model --topic /cmd_vel --vx 0.2 --seconds 2
+    python3 -m course_testing.sim_probe topic /scan [--timeout 60]
 
 `model` waits until /gazebo/get_model_state knows the model and prints its pose; `drive`
 publishes a constant Twist for a number of simulated seconds, stops the robot and prints the
