@@ -298,6 +298,10 @@ class PhysicsWorld:
     def _rouse(self, sp):
         self._loop.rouse(sp)
 
+    def time_after(self, k):
+        """The simulated time after k more steps of the current dt (as step() will count it)."""
+        return self._t0 + (self.steps + k - self._steps0) * self.dt
+
     def step(self, n=1):
         """n physics steps of dt (one call into the loop)."""
         self._loop.step(n)

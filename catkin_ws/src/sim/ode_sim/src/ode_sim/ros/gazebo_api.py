@@ -20,6 +20,7 @@ from visualization_msgs.msg import MarkerArray
 
 from ode_sim.ros.convert import pose_from_msg, pose_msg, twist_msg, vector
 from ode_sim.ros.markers import SceneMarkers
+from ode_sim.ros.plugins.base import NO_WORK
 from ode_sim.description.model import ModelError
 from ode_sim.description.transforms import Pose
 
@@ -83,6 +84,7 @@ class GazeboApi:
         self._marker_version = -1
         self._next_marker = 0.0         # wall time of the next refresh
         node.step_hooks.append(self.after_step)
+        node.group_limits.append(self.next_update)
         self.publish_markers()
 
     # ----------------------------------------------------------------- helpers
@@ -112,6 +114,14 @@ class GazeboApi:
         return None
 
     # ----------------------------------------------------------------- per step
+    def next_update(self):
+        """None (after every step) while wrenches or efforts last or model/link states are
+        subscribed; else nothing to do per step (the node may step in groups)."""
+        if self._wrenches or self._efforts or self.model_states.get_num_connections() > 0 \
+                or self.link_states.get_num_connections() > 0:
+            return None
+        return NO_WORK
+
     def after_step(self):
         t = self.physics.time
         if self._wrenches:

@@ -26,6 +26,9 @@ from ode_sim.description.model import ModelError
 from ode_sim.ros.plugins.rosio import MemoryIO, WallClock
 
 
+NO_WORK = float('inf')       # next_update(): nothing to do until something changes
+
+
 class PluginContext:
     """Filled by the node. Attributes:
     physics      ode_sim.engine.physics.PhysicsWorld
@@ -208,6 +211,16 @@ class Plugin:
             if self._next <= t:
                 self._next = t + self.period
         return True
+
+    def next_update(self):
+        """When update() next has work: a sim time (the node may step up to it in one group,
+        as fast as possible), NO_WORK, or None (update() or before_step() must run after every
+        step: the default, for plugins that do not say otherwise)."""
+        return None
+
+    def _next_due(self):
+        """next_update() of a plugin whose update() only acts when due()."""
+        return self._next if self.period > 0 else None
 
     # -- lifecycle
     def before_step(self):

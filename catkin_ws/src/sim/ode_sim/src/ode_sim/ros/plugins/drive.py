@@ -169,6 +169,9 @@ class DiffDrive(_Drive):
         return j
 
     # -- per step
+    def next_update(self):
+        return None if self.odom_source == 'encoder' else self._next_due()
+
     def update(self):
         if self.odom_source == 'encoder':
             self.update_encoder()
@@ -318,6 +321,9 @@ class SkidSteerDrive(_Drive):
         self._subscribe(self.command_topic)
         self.odom_pub = self.ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
                                                 SENSOR_QUEUE)
+
+    def next_update(self):
+        return self._next_due()
 
     def update(self):
         if not self.due():

@@ -25,7 +25,7 @@ import random
 import numpy as np
 import rospy
 
-from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.base import NO_WORK, Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.ros.convert import fill_vector
 from ode_sim.ros.plugins.state import gaussian, parse_vector
@@ -111,6 +111,9 @@ class GazeboRosImu(_Imu):
         fill_vector(msg.linear_acceleration, [v + gaussian(self.rng, n) for v in accel])
         _fill_cov(msg, n * n)
         return msg
+
+    def next_update(self):
+        return NO_WORK if self.pub is None else self._next_due()
 
     def update(self):
         if self.pub is None or not self.due():
@@ -209,6 +212,9 @@ class GazeboRosImuSensor(_Imu):
         fill_vector(msg.angular_velocity, [v + gaussian(rng, n) for v in omega])
         _fill_cov(msg, n * n)
         return msg
+
+    def next_update(self):
+        return self._next_due()
 
     def update(self):
         if not self.due():

@@ -21,7 +21,7 @@ import random
 import numpy as np
 import rospy
 
-from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.base import NO_WORK, Plugin
 from ode_sim.ros.convert import fill_pose, fill_vector
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.description.transforms import Pose, quat_from_rpy
@@ -119,6 +119,9 @@ class P3D(Plugin):
             msg.twist.covariance[i] = gn2
         return msg
 
+    def next_update(self):
+        return NO_WORK if not self.active or self.pub is None else self._next_due()
+
     def update(self):
         if not self.active or self.pub is None or not self.due():
             return
@@ -155,6 +158,9 @@ class JointStatePublisher(Plugin):
         msg.velocity = [float(j.velocity()) for j in self.joints]
         msg.effort = [float(j.effort()) for j in self.joints]
         return msg
+
+    def next_update(self):
+        return self._next_due()
 
     def update(self):
         if self.due():
