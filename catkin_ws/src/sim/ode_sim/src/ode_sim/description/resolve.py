@@ -72,7 +72,8 @@ def _version_key(text):
 
 
 class ModelPaths:
-    """model:// lookup. `extra`: directories searched first (list or colon separated string)."""
+    """model:// lookup, in gzserver's (and gazebo_ros spawn_model's) order: `extra` (list or
+    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/."""
 
     def __init__(self, extra=None):
         if isinstance(extra, str):
@@ -80,6 +81,9 @@ class ModelPaths:
         self.extra = [os.path.abspath(os.path.expanduser(p)) for p in (extra or [])]
         self.env = [os.path.abspath(os.path.expanduser(p))
                     for p in _split_path(os.environ.get('GAZEBO_MODEL_PATH', ''))]
+        home = os.environ.get('HOME')
+        if home:
+            self.env.append(os.path.join(home, '.gazebo', 'models'))
         self.library = os.path.join(package_dir(), 'models')
 
     @property
