@@ -12,7 +12,7 @@ import os
 
 import pytest
 
-from my_robot_simulation import sim_testing as T
+from course_testing import sim_testing as T
 
 _spec = importlib.util.spec_from_file_location(
     'course_tasks_student_shell_6', os.path.join(os.path.dirname(__file__), 'student_shell.py'))

@@ -2,7 +2,7 @@
 import os
 
 from my_robot_model import model_check as mc
-from my_robot_model.gui_check import rviz_launch_shows
+from course_testing.gui_check import rviz_launch_shows
 
 COLOURS = {'blue base': (0.05, 0.35, 0.9, 1.0), 'black wheels': (0.0, 0.0, 0.0, 1.0)}
 

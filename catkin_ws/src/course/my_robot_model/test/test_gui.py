@@ -2,7 +2,7 @@
 import pytest
 
 from my_robot_model import model_check as mc
-from my_robot_model.gui_check import rviz_launch_shows
+from course_testing.gui_check import rviz_launch_shows
 
 ORANGE = (1.0, 108 / 255, 10 / 255, 1.0)
 BLUE = (0.0, 0.0, 0.8, 1.0)

@@ -6,7 +6,7 @@ import math
 import pytest
 
 from course_testing import Proc
-from my_robot_simulation import sim_testing as T
+from course_testing import sim_testing as T
 
 HEADLESS = ['gui:=false', 'rviz:=false']
 

@@ -3,7 +3,7 @@ with the configured sizes, the lidar sees the scene's objects, sensor_data_proc.
 the Canny edges of the camera image."""
 import pytest
 
-from my_robot_simulation import sim_testing as T
+from course_testing import sim_testing as T
 
 
 def test_robot_sim_camera_launch(roscore, tmp_path):

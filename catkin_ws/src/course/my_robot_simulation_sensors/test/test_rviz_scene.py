@@ -9,7 +9,7 @@ import os
 
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
-from my_robot_model.gui_check import colour_mask, keep
+from course_testing.gui_check import colour_mask, keep
 
 ORANGE = (1.0, 0.42, 0.04, 1.0)     # the robot's body (URDF material) and the traffic cone
 SCAN = (1.0, 0.0, 0.0, 1.0)         # sensors.rviz: LaserScan, flat colour 255 0 0

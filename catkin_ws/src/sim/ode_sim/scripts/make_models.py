@@ -18,8 +18,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 PKG = os.path.dirname(HERE)
 sys.path.insert(0, os.path.join(PKG, 'src'))
 
-from ode_sim import meshgen as mg  # noqa: E402
-from ode_sim.meshgen import box, box_between, combine, cylinder, ellipsoid, lathe, ring  # noqa
+from ode_sim.description import meshgen as mg  # noqa: E402
+from ode_sim.description.meshgen import box, box_between, combine, cylinder, ellipsoid, lathe, ring  # noqa
 
 SDF_VERSION = '1.6'
 AUTHOR = 'ode_sim authors'

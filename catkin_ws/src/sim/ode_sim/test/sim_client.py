@@ -128,6 +128,21 @@ def api():
     out['fast_running'] = sim_time() > a
     svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
         phys.time_step, phys.max_update_rate, phys.gravity, phys.ode_config)
+    # a change of the step: simulated time accumulates (no jump, never backwards)
+    pause()
+    t0 = sim_time()
+    svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
+        0.004, phys.max_update_rate, phys.gravity, phys.ode_config)
+    t1 = sim_time()
+    unpause()
+    time.sleep(0.3)
+    pause()
+    t2 = sim_time()
+    svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
+        phys.time_step, phys.max_update_rate, phys.gravity, phys.ode_config)
+    t3 = sim_time()
+    unpause()
+    out['step_change'] = [t0, t1, t2, t3]
     # resets
     before = sim_time()
     svc('/gazebo/reset_world', Empty)()

@@ -5,11 +5,12 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
-from ode_sim.laser import LaserModel, fill_laserscan, scan_directions
-from ode_sim.model import Geometry, ModelError, Sensor
-from ode_sim.raycast import RayCaster
-from ode_sim.scene import ShapeInstance
-from ode_sim.transforms import Pose
+from ode_sim.engine.laser import LaserModel, scan_directions
+from ode_sim.ros.convert import fill_laserscan
+from ode_sim.description.model import Geometry, ModelError, Sensor
+from ode_sim.engine.raycast import RayCaster
+from ode_sim.engine.scene import ShapeInstance
+from ode_sim.description.transforms import Pose
 
 FOUR = {'samples': 4, 'min_angle': 0.0, 'max_angle': 1.5 * math.pi,
         'range_min': 0.12, 'range_max': 3.5}

@@ -5,10 +5,10 @@ import pytest
 import rospy
 from visualization_msgs.msg import Marker
 
-from ode_sim.markers import SceneMarkers
-from ode_sim.model import Geometry
-from ode_sim.scene import ShapeInstance
-from ode_sim.transforms import Pose
+from ode_sim.ros.markers import SceneMarkers
+from ode_sim.description.model import Geometry
+from ode_sim.engine.scene import ShapeInstance
+from ode_sim.description.transforms import Pose
 
 MESH = Geometry('mesh', vertices=np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], float),
                 faces=np.array([[0, 1, 2]]))

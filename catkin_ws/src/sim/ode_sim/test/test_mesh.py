@@ -1,12 +1,12 @@
-"""ode_sim.mesh: STL (ASCII, binary) and OBJ loading, de-duplication, scale, cache, errors."""
+"""ode_sim.description.mesh: STL (ASCII, binary) and OBJ loading, de-duplication, scale, cache, errors."""
 import os
 import struct
 
 import numpy as np
 import pytest
 
-from ode_sim.mesh import load_stl
-from ode_sim.model import ModelError
+from ode_sim.description.mesh import load_stl
+from ode_sim.description.model import ModelError
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 MESHES = os.path.join(HERE, 'fixtures', 'loaders', 'meshes')

@@ -14,7 +14,7 @@ PKG = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODELS = os.path.join(PKG, 'models')
 sys.path.insert(0, os.path.join(PKG, 'src'))
 
-from ode_sim import meshgen  # noqa: E402
+from ode_sim.description import meshgen  # noqa: E402
 
 
 def _load_script():
@@ -184,7 +184,7 @@ def test_object_sdf_visuals_are_meshes_collisions_primitives(name):
             ext = np.full(3, float(geom.findtext('radius')))
         rpy = floats(c.findtext('pose'))[3:]
         if any(rpy):    # tilted box: its bounding box
-            from ode_sim.transforms import Pose
+            from ode_sim.description.transforms import Pose
             rot = np.abs(Pose.from_xyz_rpy([0, 0, 0], rpy).matrix()[:3, :3])
             ext = rot @ ext
         lo, hi = xyz - ext, xyz + ext

@@ -4,10 +4,10 @@ import math
 import numpy as np
 import pytest
 
-from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
                            Physics, Surface, Visual)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.description.transforms import Pose
 
 
 def ground():
@@ -205,3 +205,34 @@ def test_link_welded_to_the_world_is_static_even_inside_the_ground():
     assert m.links['base'].pose().p == pytest.approx([0, 0, 0])
     # an undamped swing from horizontal: down through pi/2 to the other horizontal and back
     assert max(angles) == pytest.approx(math.pi, abs=0.05) and min(angles) > -0.05
+
+
+def test_time_accumulates_across_a_change_of_step():
+    """SetPhysicsProperties changing max_step_size must not make the clock jump or go back."""
+    pw = PhysicsWorld(Physics())
+    pw.step(1000)                          # 1 s of 1 ms steps
+    assert pw.time == pytest.approx(1.0)
+    pw.set_properties(time_step=0.004)
+    assert pw.time == pytest.approx(1.0)   # no jump at the change
+    pw.step(250)                           # + 1 s of 4 ms steps
+    assert pw.time == pytest.approx(2.0)
+    pw.set_properties(time_step=0.0005)
+    before = pw.time
+    pw.step(1)
+    assert pw.time == pytest.approx(before + 0.0005)   # never backwards
+    pw.step(1999)
+    assert pw.time == pytest.approx(3.0)
+    pw.reset_time()
+    pw.step(2)
+    assert pw.time == pytest.approx(0.001)
+
+
+def test_set_properties_rejects_a_non_positive_step_and_sets_gravity():
+    pw = PhysicsWorld(Physics())
+    with pytest.raises(ValueError, match='time_step must be positive'):
+        pw.set_properties(time_step=0.0)
+    pw.set_properties(gravity=(0.0, 0.0, -1.0))
+    assert pw.gravity == pytest.approx((0.0, 0.0, -1.0))
+    m = pw.add_model(box(z=20.0))
+    pw.step(1000)
+    assert 20.0 - m.pose().p[2] == pytest.approx(0.5, rel=0.01)

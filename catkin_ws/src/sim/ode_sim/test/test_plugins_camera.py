@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 import rospy
 
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Light, Link, Model, ModelError,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Light, Link, Model, ModelError,
                            Physics, Plugin as PluginDesc, Sensor, Visual, World)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins import camera as camera_plugin
-from ode_sim.plugins.base import PluginContext
-from ode_sim.plugins.rosio import MemoryPublisher
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins import camera as camera_plugin
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import MemoryPublisher, RosIO
+from ode_sim.description.transforms import Pose
 
 W, H = 64, 48
 HFOV = 1.047
@@ -58,13 +58,14 @@ def camera_robot(kind='camera', plugin='libgazebo_ros_camera.so', tags=None, fmt
 
 
 def setup(**kw):
+    io = kw.pop('io', None)     # not a parameter: pytest would take setup(x) for a module hook
     pw = PhysicsWorld(Physics())
     for m in scene_models():
         pw.add_model(m)
     desc, sensor, pdesc = camera_robot(**kw)
     m = pw.add_model(desc)
     world = World(lights=[Light('sun', direction=(1.0, 0.0, 0.0))])
-    ctx = PluginContext(pw, world)
+    ctx = PluginContext(pw, world, io=io)
     p = plugins.lookup(pdesc.filename)(ctx, m, pdesc, sensor)
     return pw, ctx, p
 
@@ -343,7 +344,7 @@ def _integration_main():
     import time
     from sensor_msgs.msg import CameraInfo, Image, PointCloud2
     rospy.init_node('camera_plugin_check', disable_signals=True)
-    pw, ctx, p = kinect(update_rate=20.0)
+    pw, ctx, p = kinect(update_rate=20.0, io=RosIO())
     got = {'image': [], 'info': [], 'depth': [], 'points': []}
     subs = [rospy.Subscriber('/cam1/image_raw', Image, got['image'].append),
             rospy.Subscriber('/cam1/camera_info', CameraInfo, got['info'].append),

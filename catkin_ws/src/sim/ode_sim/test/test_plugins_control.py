@@ -15,12 +15,13 @@ import rospy
 
 from sensor_msgs.msg import JointState
 from std_msgs.msg import Bool
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
                            Plugin as PluginDesc, Transmission)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins.base import PluginContext
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import FakeClock, RosIO
+from ode_sim.description.transforms import Pose
 
 I_ARM = 1 / 12 + 0.25           # 1 kg, 1 m arm about its end
 I_SPIN = 0.1
@@ -56,10 +57,10 @@ class FakeSub:
         pass
 
 
-def bridge(interfaces, lockstep=False, **params):
+def bridge(interfaces, lockstep=False, wall=None, io=None, **params):
     pw = PhysicsWorld(Physics())
     m = pw.add_model(rig(interfaces))
-    ctx = PluginContext(pw, None, lockstep=lockstep)
+    ctx = PluginContext(pw, None, lockstep=lockstep, wall=wall, io=io)
     cls = plugins.lookup('libgazebo_ros_control.so')
     plug = cls(ctx, m, PluginDesc('gazebo_ros_control', 'libgazebo_ros_control.so',
                                   {k: str(v) for k, v in params.items()}))
@@ -238,8 +239,9 @@ def test_lockstep_waits_for_the_command_of_the_period():
 def test_lockstep_times_out_with_one_warning_and_resumes(monkeypatch):
     warnings = []
     monkeypatch.setattr(rospy, 'logwarn', lambda m, *a: warnings.append(m % a if a else m))
-    pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.01)
-    plug.lockstep_timeout = 0.2
+    wall = FakeClock()                              # the timeouts cost no wall time
+    pw, m, plug = bridge({'hinge': POS}, lockstep=True, wall=wall, controlPeriod=0.01)
+    plug.lockstep_timeout = 30.0
     plug.cmd_sub = FakeSub(0)                       # nobody publishes commands: no waiting
     run(pw, plug, 0.05)
     assert plug.waits == 0 and plug.timeouts == 0
@@ -248,7 +250,8 @@ def test_lockstep_times_out_with_one_warning_and_resumes(monkeypatch):
     assert plug.waits == 1 and plug.timeouts == 1
     assert [w for w in warnings if 'lockstep' in w] == [
         'ode_sim: lockstep: no joint command for t=0.050 from /rig/ode_sim/joint_commands '
-        'within 0.2 s; stepping on with the last command']
+        'within 30.0 s; stepping on with the last command']
+    assert wall.now() >= 30.0
     command(plug, stamp=plug.state_pub.sent[-1].header.stamp, hinge=('position', 0.2))
     run(pw, plug, 0.01)                             # commands flowed: waits (and times out) again
     assert plug.waits == 2 and plug.timeouts == 2
@@ -282,18 +285,24 @@ def test_contract_over_real_topics_in_lockstep(roscore, tmp_path):
 def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
     """With ROS up the plugin starts gazebo_ros_control_node in NS (here a stand-in script
     that records its arguments) and stops it on shutdown; controllerNode=false starts none."""
-    from ode_sim.plugins import control
+    from ode_sim.ros.plugins import control
     import roslib.packages
     args = tmp_path / 'args'
     fake = tmp_path / 'gazebo_ros_control_node'
     fake.write_text('#!/bin/sh\necho "$@" > %s\nexec sleep 60\n' % args)
     fake.chmod(0o755)
-    monkeypatch.setattr(control, 'ros_up', lambda: True)
+    class LiveIO:                   # "ROS is up", endpoints that do nothing
+        live = True
+
+        def publisher(self, *a, **k):
+            return None
+
+        def subscriber(self, *a, **k):
+            return None
+
     monkeypatch.setattr(control.GazeboRosControl, '_load_ros_params', lambda self: None)
-    monkeypatch.setattr(control, 'publisher', lambda *a, **k: None)
-    monkeypatch.setattr(control, 'subscriber', lambda *a, **k: None)
     monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [str(fake)])
-    _, _, plug = bridge({'hinge': POS}, eStopTopic='estop')
+    _, _, plug = bridge({'hinge': POS}, io=LiveIO(), eStopTopic='estop')
     proc = plug.node_proc
     assert proc is not None and proc.poll() is None
     deadline = time.monotonic() + 10
@@ -304,20 +313,20 @@ def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
                                         str(os.getpid()), '--estop-topic', 'estop']
     plug.shutdown()
     assert proc.poll() is not None and plug.node_proc is None
-    _, _, plug = bridge({'hinge': POS}, controllerNode='false')
+    _, _, plug = bridge({'hinge': POS}, io=LiveIO(), controllerNode='false')
     assert plug.node_proc is None
     monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [])
-    _, _, plug = bridge({'hinge': POS})
+    _, _, plug = bridge({'hinge': POS}, io=LiveIO())
     assert plug.node_proc is None       # not built: an ERROR, the bridge still loads
     with pytest.raises(ModelError, match='controllerNode'):
-        bridge({'hinge': POS}, controllerNode='maybe')
+        bridge({'hinge': POS}, io=LiveIO(), controllerNode='maybe')
 
 
 def integration():
     """A client like the coming RobotHW: reads NS/ode_sim/joint_states, answers each state with
     a position command on NS/ode_sim/joint_commands (same stamp). The sim runs here too."""
     rospy.init_node('control_bridge_check')
-    pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.005,
+    pw, m, plug = bridge({'hinge': POS}, lockstep=True, io=RosIO(), controlPeriod=0.005,
                         controllerNode='false')      # this script is the controller side
     joints = rospy.get_param('/rig/ode_sim/joints')
     assert joints[0]['name'] == 'hinge' and joints[0]['interface'] == POS, joints

@@ -6,12 +6,12 @@ import pytest
 import rospy
 
 from geometry_msgs.msg import Twist
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
                            Physics, Plugin as PluginDesc, Surface)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins.base import PluginContext
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.description.transforms import Pose
 
 R = 0.1             # wheel radius
 SEP = 0.4           # wheel separation

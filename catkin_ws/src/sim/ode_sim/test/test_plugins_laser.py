@@ -10,14 +10,14 @@ import numpy as np
 import pytest
 import rospy
 
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
                            Plugin as PluginDesc, Sensor, Visual, World)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins import laser as laser_plugin
-from ode_sim.plugins.base import PluginContext
-from ode_sim.plugins.rosio import MemoryPublisher
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins import laser as laser_plugin
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, MemoryPublisher, RosIO
+from ode_sim.description.transforms import Pose
 
 # sensor origin on the robot link; the robot stands at the world origin (yaw 0) at z = 0.5
 SENSOR_XYZ = (0.1, 0.0, 0.2)
@@ -65,11 +65,12 @@ def robot(yaw=0.0, sensor_type='ray', update_rate=10.0, plugin='libgazebo_ros_la
 
 
 def setup(**kw):
+    io = kw.pop('io', None)     # not a parameter: pytest would take setup(x) for a module hook
     pw = PhysicsWorld(Physics())
     pw.add_model(room())
     desc, sensor, pdesc = robot(**kw)
     m = pw.add_model(desc)
-    ctx = PluginContext(pw, World())
+    ctx = PluginContext(pw, World(), io=io)
     cls = plugins.lookup(pdesc.filename)
     return pw, ctx, cls(ctx, m, pdesc, sensor)
 
@@ -111,7 +112,7 @@ def test_message_frame_angles_limits_and_stamp():
     pw.step(250)
     p.update()
     msg = p.pub.sent[-1]
-    assert p.pub.name == '/scan' and p.pub.queue_size == 1
+    assert p.pub.name == '/scan' and p.pub.queue_size == SENSOR_QUEUE   # no scan dropped
     assert msg.header.frame_id == 'laser_link'
     assert msg.header.stamp.to_sec() == pytest.approx(0.25)
     assert msg.angle_min == pytest.approx(-math.pi)
@@ -257,7 +258,7 @@ def _integration_main():
     import time
     from sensor_msgs.msg import LaserScan
     rospy.init_node('laser_plugin_check', disable_signals=True)
-    pw, ctx, p = setup(update_rate=20.0)
+    pw, ctx, p = setup(update_rate=20.0, io=RosIO())
     got = []
     sub = rospy.Subscriber('/scan', LaserScan, got.append, queue_size=100)
     deadline = time.time() + 15

@@ -4,12 +4,12 @@ import math
 import numpy as np
 import pytest
 
-from ode_sim import plugins
-from ode_sim.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
+from ode_sim.ros import plugins
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
                            Plugin as PluginDesc)
-from ode_sim.physics import PhysicsWorld
-from ode_sim.plugins.base import PluginContext
-from ode_sim.transforms import Pose
+from ode_sim.engine.physics import PhysicsWorld
+from ode_sim.ros.plugins.base import PluginContext
+from ode_sim.description.transforms import Pose
 
 
 def arm_model():

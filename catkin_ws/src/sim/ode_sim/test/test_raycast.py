@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from ode_sim.model import Geometry, ModelError
-from ode_sim.raycast import RayCaster, scan_directions
-from ode_sim.scene import ShapeInstance
-from ode_sim.transforms import Pose
+from ode_sim.description.model import Geometry, ModelError
+from ode_sim.engine.raycast import RayCaster, scan_directions
+from ode_sim.engine.scene import ShapeInstance
+from ode_sim.description.transforms import Pose
 
 
 def shape(key, geometry, pose=None, link_pose=None, model=None, link='link', local=None):

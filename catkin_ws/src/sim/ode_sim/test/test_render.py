@@ -8,11 +8,11 @@ import threading
 import numpy as np
 import pytest
 
-from ode_sim.model import Geometry, Light, ModelError
-from ode_sim.render import Renderer, camera_info_matrix, focal_length
-from ode_sim.scene import ShapeInstance
-from ode_sim.tessellate import tessellate
-from ode_sim.transforms import Pose
+from ode_sim.description.model import Geometry, Light, ModelError
+from ode_sim.engine.render import Renderer, camera_info_matrix, focal_length
+from ode_sim.engine.scene import ShapeInstance
+from ode_sim.engine.tessellate import tessellate
+from ode_sim.description.transforms import Pose
 
 W, H, HFOV = 640, 480, 1.047
 BG = (0.7, 0.7, 0.7, 1.0)
@@ -289,8 +289,8 @@ def test_no_egl_is_one_clear_error(tmp_path):
     import subprocess
     import sys
     env = dict(os.environ, __EGL_VENDOR_LIBRARY_FILENAMES=str(tmp_path / 'none.json'))
-    code = ('from ode_sim.render import Renderer\n'
-            'from ode_sim.model import ModelError\n'
+    code = ('from ode_sim.engine.render import Renderer\n'
+            'from ode_sim.description.model import ModelError\n'
             'try:\n    Renderer(8, 8, 1.0)\n'
             'except ModelError as e:\n    print("ERR", e)\n')
     out = subprocess.run([sys.executable, '-c', code], env=env, capture_output=True, text=True,

@@ -1,14 +1,14 @@
-"""ode_sim.sdf and ode_sim.resolve: SDF 1.4-1.6 worlds and models, model:// lookup, errors."""
+"""ode_sim.description.sdf and ode_sim.description.resolve: SDF 1.4-1.6 worlds and models, model:// lookup, errors."""
 import os
 import time
 
 import numpy as np
 import pytest
 
-from ode_sim import materials
-from ode_sim.model import ModelError
-from ode_sim.resolve import ModelPaths, package_dir, resolve_world
-from ode_sim.sdf import load_world, parse_sdf_model, parse_world
+from ode_sim.description import materials
+from ode_sim.description.model import ModelError
+from ode_sim.description.resolve import ModelPaths, package_dir, resolve_world
+from ode_sim.description.sdf import load_world, parse_sdf_model, parse_world
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FIX = os.path.join(HERE, 'fixtures', 'loaders')

@@ -78,6 +78,9 @@ def test_every_gazebo_service(roscore, tmp_path):
     assert out['wrench'] and out['pushed'][1] > 0.05
     assert out['physics'][:3] == pytest.approx([0.001, 1000, -9.8])
     assert out['fast_running'], 'sim time stood still with max_update_rate 0'
+    t0, t1, t2, t3 = out['step_change']
+    assert t1 == pytest.approx(t0, abs=1e-9), 'sim time jumped when the step changed'
+    assert t2 > t1 and t3 == pytest.approx(t2, abs=1e-9), out['step_change']
     assert out['reset_world'][0] == pytest.approx([1, 2, 0.1], abs=0.01) and out['reset_world'][1]
     assert out['reset_sim_time'] < 0.5
     assert out['paused_again']
@@ -142,7 +145,7 @@ class FakeClock:
 
 
 def paced_run(rate, steps, cost, stall_at=None, stall=0.0):
-    from ode_sim.node import Pacer
+    from ode_sim.ros.node import Pacer
     clock = FakeClock()
     pacer = Pacer(clock, clock.sleep)
     pacer.restart(rate, 0)

@@ -1,4 +1,4 @@
-"""ode_sim.urdf: URDF -> model as Gazebo spawns it (fixed-joint lumping, kinematics, <gazebo>
+"""ode_sim.description.urdf: URDF -> model as Gazebo spawns it (fixed-joint lumping, kinematics, <gazebo>
 extensions, transmissions), the course's three robots, and one-line errors for bad input."""
 import math
 import os
@@ -9,10 +9,10 @@ import time
 import numpy as np
 import pytest
 
-from ode_sim import materials
-from ode_sim.model import ModelError
-from ode_sim.transforms import Pose
-from ode_sim.urdf import load_urdf, parse_urdf
+from ode_sim.description import materials
+from ode_sim.description.model import ModelError
+from ode_sim.description.transforms import Pose
+from ode_sim.description.urdf import load_urdf, parse_urdf
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 FIX = os.path.join(HERE, 'fixtures', 'loaders')

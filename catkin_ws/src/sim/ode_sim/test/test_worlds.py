@@ -1,6 +1,6 @@
 """The worlds (worlds/*.world): well-formed, only existing models, ODE physics, the textbook's
 parameters, furniture placed clear of walls and of the spawn area; and the SDF loader
-(ode_sim.sdf) reads every world and every model of the library as they are meant."""
+(ode_sim.description.sdf) reads every world and every model of the library as they are meant."""
 import glob
 import importlib.util
 import math
@@ -16,9 +16,9 @@ MODELS = os.path.join(PKG, 'models')
 WORLDS = os.path.join(PKG, 'worlds')
 sys.path.insert(0, os.path.join(PKG, 'src'))
 
-from ode_sim.resolve import ModelPaths  # noqa: E402
-from ode_sim.sdf import load_world, parse_sdf_model  # noqa: E402
-from ode_sim.transforms import Pose  # noqa: E402
+from ode_sim.description.resolve import ModelPaths  # noqa: E402
+from ode_sim.description.sdf import load_world, parse_sdf_model  # noqa: E402
+from ode_sim.description.transforms import Pose  # noqa: E402
 
 _spec = importlib.util.spec_from_file_location('make_models',
                                                os.path.join(PKG, 'scripts', 'make_models.py'))
@@ -274,8 +274,8 @@ def test_parse_sdf_model_every_room(name):
 
 def test_every_object_rests_upright_on_the_ground():
     """All 14 objects on the ground plane, 1 s of ODE physics: none sinks, slides or tips."""
-    from ode_sim.model import World
-    from ode_sim.physics import PhysicsWorld
+    from ode_sim.description.model import World
+    from ode_sim.engine.physics import PhysicsWorld
     world = load_world(os.path.join(WORLDS, 'empty.world'), PATHS)
     pw = PhysicsWorld(world.physics, world.gravity)
     pw.add_model(world.models[0])

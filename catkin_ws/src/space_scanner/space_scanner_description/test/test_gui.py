@@ -2,7 +2,7 @@
 import os
 
 from my_robot_model import model_check as mc
-from my_robot_model.gui_check import rviz_launch_shows
+from course_testing.gui_check import rviz_launch_shows
 
 COLOURS = {'green decks': (0.1, 0.75, 0.2, 1.0), 'red front wheels': (0.85, 0.05, 0.05, 1.0), 'blue rear wheels': (0.05, 0.2, 0.85, 1.0)}
 

@@ -5,7 +5,7 @@ import math
 
 import pytest
 
-from my_robot_simulation import sim_testing as T
+from course_testing import sim_testing as T
 
 
 def test_simulation_launch(roscore, tmp_path):

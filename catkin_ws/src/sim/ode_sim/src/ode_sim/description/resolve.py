@@ -1,0 +1,194 @@
+"""Where files named in worlds and robots are: `model://`, `package://`, `file://` URIs, plain
+paths, and world names such as `worlds/empty.world`.
+
+Lookup order for `model://NAME` (as gzserver with gazebo_ros): the directories given as `extra`,
+then the GAZEBO_MODEL_PATH entries (colon separated), then ode_sim's own model library
+`<ode_sim package>/models`. World files: the path itself, then GAZEBO_RESOURCE_PATH entries,
+then the ode_sim package directory (so `worlds/empty.world` is ode_sim's `worlds/empty.world`).
+"""
+import os
+import xml.etree.ElementTree as ET
+
+from ode_sim.description.model import ModelError
+
+_PKG_DIR_CACHE = []
+
+
+def package_dir():
+    """The ode_sim package directory (catkin_ws/src/sim/ode_sim in a source checkout)."""
+    if _PKG_DIR_CACHE:
+        return _PKG_DIR_CACHE[0]
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidate = os.path.dirname(os.path.dirname(os.path.dirname(here)))   # src/ode_sim/description
+    found = None
+    if os.path.isfile(os.path.join(candidate, 'package.xml')):
+        found = candidate
+    else:
+        try:
+            import rospkg
+            found = rospkg.RosPack().get_path('ode_sim')
+        except Exception:  # rospkg missing or ode_sim not on ROS_PACKAGE_PATH
+            found = candidate
+    _PKG_DIR_CACHE.append(found)
+    return found
+
+
+def _split_path(value):
+    return [p for p in (value or '').split(os.pathsep) if p.strip()]
+
+
+_PACKAGES = {}
+_ROSPACK = []
+
+
+def find_package(name):
+    """Directory of ROS package `name` (rospkg, cached), or ModelError."""
+    hit = _PACKAGES.get(name)
+    if hit is not None:
+        return hit
+    try:
+        import rospkg
+    except ImportError:
+        raise ModelError('package://%s: rospkg is not available to find ROS packages' % name)
+    if not _ROSPACK:
+        _ROSPACK.append(rospkg.RosPack())
+    try:
+        path = _ROSPACK[0].get_path(name)
+    except rospkg.ResourceNotFound:
+        raise ModelError('package://%s: ROS package %r not found (ROS_PACKAGE_PATH=%s)'
+                         % (name, name, os.environ.get('ROS_PACKAGE_PATH', '')))
+    _PACKAGES[name] = path
+    return path
+
+
+def _version_key(text):
+    out = []
+    for part in (text or '0').split('.'):
+        try:
+            out.append(int(part))
+        except ValueError:
+            out.append(0)
+    return tuple(out)
+
+
+class ModelPaths:
+    """model:// lookup, in gzserver's (and gazebo_ros spawn_model's) order: `extra` (list or
+    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/."""
+
+    def __init__(self, extra=None):
+        if isinstance(extra, str):
+            extra = _split_path(extra)
+        self.extra = [os.path.abspath(os.path.expanduser(p)) for p in (extra or [])]
+        self.env = [os.path.abspath(os.path.expanduser(p))
+                    for p in _split_path(os.environ.get('GAZEBO_MODEL_PATH', ''))]
+        home = os.environ.get('HOME')
+        if home:
+            self.env.append(os.path.join(home, '.gazebo', 'models'))
+        self.library = os.path.join(package_dir(), 'models')
+
+    @property
+    def roots(self):
+        seen, out = set(), []
+        for p in self.extra + self.env + [self.library]:
+            if p not in seen:
+                seen.add(p)
+                out.append(p)
+        return out
+
+    def model_dir(self, name):
+        """Directory of model `name`, or ModelError naming the searched directories."""
+        name = name.strip('/')
+        for root in self.roots:
+            d = os.path.join(root, name)
+            if os.path.isdir(d):
+                return d
+        raise ModelError('model://%s: model not found (searched: %s)'
+                         % (name, ', '.join(self.roots) or 'nothing'))
+
+    def model_sdf(self, name):
+        """The SDF file of model `name`: the <sdf> of model.config with the highest version,
+        else model.sdf."""
+        d = self.model_dir(name)
+        config = os.path.join(d, 'model.config')
+        chosen = None
+        if os.path.isfile(config):
+            try:
+                root = ET.parse(config).getroot()
+            except ET.ParseError as e:
+                raise ModelError('%s: malformed XML: %s' % (config, e))
+            best = None
+            for el in root.findall('sdf'):
+                fname = (el.text or '').strip()
+                if not fname:
+                    continue
+                key = _version_key(el.get('version'))
+                if best is None or key > best[0]:
+                    best = (key, fname)
+            if best is not None:
+                chosen = os.path.join(d, best[1])
+        if chosen is None:
+            chosen = os.path.join(d, 'model.sdf')
+        if not os.path.isfile(chosen):
+            raise ModelError('model://%s: %s does not exist' % (name, chosen))
+        return chosen
+
+    def resolve_uri(self, uri, base_dir=None):
+        """Absolute path of an existing file or directory named by `uri`: model://NAME/...,
+        package://PKG/..., file://PATH, an absolute path or one relative to `base_dir`."""
+        uri = (uri or '').strip()
+        if not uri:
+            raise ModelError('empty URI')
+        base_dir = base_dir or os.getcwd()
+        searched = []
+        if uri.startswith('model://'):
+            rest = uri[len('model://'):]
+            name, _, sub = rest.partition('/')
+            d = self.model_dir(name)
+            path = os.path.join(d, sub) if sub else d
+            searched.append(path)
+        elif uri.startswith('package://'):
+            rest = uri[len('package://'):]
+            pkg, _, sub = rest.partition('/')
+            path = os.path.join(find_package(pkg), sub)
+            searched.append(path)
+        else:
+            p = uri[len('file://'):] if uri.startswith('file://') else uri
+            p = os.path.expanduser(p)
+            if os.path.isabs(p):
+                searched.append(p)
+            else:
+                searched.append(os.path.join(base_dir, p))
+                # Gazebo also looks relative to the model path entries
+                for root in self.roots:
+                    searched.append(os.path.join(root, p))
+        for path in searched:
+            if os.path.exists(path):
+                return os.path.abspath(path)
+        raise ModelError('%s: file not found (searched: %s)' % (uri, ', '.join(searched)))
+
+    def resolve_world(self, name):
+        """Path of world file `name`: the path itself, else GAZEBO_RESOURCE_PATH entries, else
+        the ode_sim package directory."""
+        name = (name or '').strip()
+        if not name:
+            raise ModelError('empty world file name')
+        if name.startswith('file://'):
+            name = name[len('file://'):]
+        name = os.path.expanduser(name)
+        searched = [os.path.abspath(name)]
+        if not os.path.isabs(name):
+            for root in _split_path(os.environ.get('GAZEBO_RESOURCE_PATH', '')):
+                searched.append(os.path.join(os.path.abspath(os.path.expanduser(root)), name))
+            searched.append(os.path.join(package_dir(), name))
+        for path in searched:
+            if os.path.isfile(path):
+                return path
+        raise ModelError('world %s: file not found (searched: %s)' % (name, ', '.join(searched)))
+
+
+def resolve_uri(uri, base_dir=None, paths=None):
+    return (paths or ModelPaths()).resolve_uri(uri, base_dir)
+
+
+def resolve_world(name, paths=None):
+    return (paths or ModelPaths()).resolve_world(name)

@@ -1,0 +1,424 @@
+"""SDF elements below a model: geometry, surface, material, sensors and plugins, inertial,
+links and joints (the description data model, model.py). Errors: ModelError `FILE:LINE: what`."""
+import math
+import xml.etree.ElementTree as ET
+
+import numpy as np
+
+from ode_sim.description import materials
+from ode_sim.description.mesh import load_stl
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, ModelError,
+                                       Plugin, Sensor, Surface, Visual)
+from ode_sim.description.transforms import Pose
+from ode_sim.description.xmldoc import text_of
+
+SUPPORTED_JOINTS = ('revolute', 'continuous', 'prismatic', 'fixed', 'ball')
+UNSUPPORTED_JOINTS = ('revolute2', 'universal', 'screw', 'gearbox')
+
+
+# ------------------------------------------------------------------------------------------
+# geometry, surface, material
+
+def parse_geometry(ctx, geom_el, owner, optional_mesh=False):
+    """Geometry of a <geometry> element; None for <empty/> (or an unreadable mesh of a visual
+    when optional_mesh: a warning then)."""
+    if geom_el is None:
+        raise ctx.err(owner, '<%s name=%r> needs <geometry>' % (owner.tag, owner.get('name', '')))
+    shapes = [c for c in geom_el if isinstance(c.tag, str)]
+    if not shapes:
+        raise ctx.err(geom_el, '<geometry> of <%s name=%r> is empty'
+                      % (owner.tag, owner.get('name', '')))
+    shape = shapes[0]
+    kind = shape.tag
+    if kind == 'box':
+        size = ctx.floats(shape, 'size', 3, (1.0, 1.0, 1.0))
+        if min(size) <= 0:
+            raise ctx.err(shape, '<box><size> must be positive, got %s' % (size,))
+        return Geometry('box', size=size)
+    if kind == 'cylinder':
+        r = ctx.num(shape, 'radius', 1.0)
+        length = ctx.num(shape, 'length', 1.0)
+        if r <= 0 or length <= 0:
+            raise ctx.err(shape, '<cylinder> radius and length must be positive')
+        return Geometry('cylinder', radius=r, length=length)
+    if kind == 'sphere':
+        r = ctx.num(shape, 'radius', 1.0)
+        if r <= 0:
+            raise ctx.err(shape, '<sphere><radius> must be positive')
+        return Geometry('sphere', radius=r)
+    if kind == 'plane':
+        normal = np.array(ctx.floats(shape, 'normal', 3, (0.0, 0.0, 1.0)))
+        n = np.linalg.norm(normal)
+        if n == 0:
+            raise ctx.err(shape, '<plane><normal> must not be zero')
+        size = ctx.floats(shape, 'size', 2, (1.0, 1.0))
+        return Geometry('plane', normal=tuple(normal / n), plane_size=size)
+    if kind == 'mesh':
+        uri = text_of(shape, 'uri')
+        if not uri:
+            raise ctx.err(shape, '<mesh> needs <uri>')
+        scale = ctx.floats(shape, 'scale', 3, (1.0, 1.0, 1.0))
+        if shape.find('submesh') is not None:
+            ctx.warn(shape, '<submesh> is ignored: the whole mesh is used')
+        return load_mesh_geometry(ctx, shape, uri, scale, optional_mesh)
+    if kind == 'empty':
+        return None
+    raise ctx.err(shape, '<%s> geometry is not supported (box, cylinder, sphere, plane, mesh)'
+                  % kind)
+
+
+def load_mesh_geometry(ctx, elem, uri, scale, optional):
+    try:
+        filename = ctx.paths.resolve_uri(uri, ctx.base_dir)
+        verts, faces = load_stl(filename, scale)
+    except ModelError as e:
+        if optional:
+            ctx.warn(elem, '%s; the visual is not drawn' % e)
+            return None
+        raise ctx.err(elem, str(e))
+    return Geometry('mesh', uri=uri, filename=filename, scale=tuple(scale),
+                    vertices=verts, faces=faces)
+
+
+def parse_surface(ctx, surf_el, surface=None):
+    s = surface or Surface()
+    if surf_el is None:
+        return s
+    fr = surf_el.find('friction')
+    if fr is not None:
+        ode = fr.find('ode')
+        if ode is not None:
+            s.mu1 = ctx.num(ode, 'mu', s.mu1)
+            s.mu2 = ctx.num(ode, 'mu2', s.mu2)
+            if ode.find('fdir1') is not None:
+                f = ctx.floats(ode, 'fdir1', 3, (0.0, 0.0, 0.0))
+                s.fdir1 = None if not any(f) else f
+            s.slip1 = ctx.num(ode, 'slip1', s.slip1)
+            s.slip2 = ctx.num(ode, 'slip2', s.slip2)
+    ct = surf_el.find('contact')
+    if ct is not None:
+        ode = ct.find('ode')
+        if ode is not None:
+            s.kp = ctx.num(ode, 'kp', s.kp)
+            s.kd = ctx.num(ode, 'kd', s.kd)
+            s.max_vel = ctx.num(ode, 'max_vel', s.max_vel)
+            s.min_depth = ctx.num(ode, 'min_depth', s.min_depth)
+    b = surf_el.find('bounce')
+    if b is not None:
+        s.bounce = ctx.num(b, 'restitution_coefficient', s.bounce)
+        s.bounce_threshold = ctx.num(b, 'threshold', s.bounce_threshold)
+    return s
+
+
+def parse_material(ctx, mat_el, visual):
+    """Set visual.color / material_name from an SDF <material>."""
+    if mat_el is None:
+        return
+    script = mat_el.find('script')
+    name = text_of(script, 'name') if script is not None else None
+    diffuse = ctx.color(mat_el, 'diffuse', None)
+    ambient = ctx.color(mat_el, 'ambient', None)
+    if diffuse is not None:
+        visual.color = diffuse
+    elif ambient is not None:
+        visual.color = ambient
+    elif name:
+        visual.color = materials.material_color(name, ctx.warnings, ctx.doc.where(script))
+    if name:
+        visual.material_name = name
+
+
+# ------------------------------------------------------------------------------------------
+# sensors and plugins
+
+def parse_plugin(ctx, el, source=None):
+    name = (el.get('name') or '').strip()
+    filename = (el.get('filename') or '').strip()
+    if not filename:
+        raise ctx.err(el, '<plugin name=%r> needs a filename attribute' % name)
+    params = {}
+    for child in el:
+        if isinstance(child.tag, str):
+            params[child.tag] = (child.text or '').strip()
+    return Plugin(name=name, filename=filename, params=params, element=el,
+                  source=source or ctx.doc.where(el))
+
+
+def _noise(ctx, parent):
+    """(mean, stddev) of a <noise> child of `parent` (0, 0 when missing)."""
+    if parent is None:
+        return 0.0, 0.0
+    n = parent.find('noise')
+    if n is None:
+        return 0.0, 0.0
+    return ctx.num(n, 'mean', 0.0), ctx.num(n, 'stddev', 0.0)
+
+
+def parse_sensor(ctx, el, link_name):
+    """A Sensor from an SDF <sensor> (link_name: the link it is attached to)."""
+    name = ctx.name(el, 'sensor')
+    stype = (el.get('type') or '').strip()
+    if not stype:
+        raise ctx.err(el, '<sensor name=%r> needs a type attribute' % name)
+    sensor = Sensor(name=name, type=stype, link=link_name)
+    sensor.pose = ctx.pose(el, link_name)
+    sensor.update_rate = ctx.num(el, 'update_rate', 0.0)
+    sensor.always_on = ctx.boolean(el, 'always_on', True)
+    sensor.visualize = ctx.boolean(el, 'visualize', False)
+    sensor.topic = text_of(el, 'topic', '') or ''
+    p = sensor.params
+    if stype in ('ray', 'gpu_ray'):
+        ray = el.find('ray')
+        if ray is None:
+            ray = el.find('lidar')
+        if ray is None:
+            ray = ET.Element('ray')
+        scan = ray.find('scan')
+        hor = scan.find('horizontal') if scan is not None else None
+        ver = scan.find('vertical') if scan is not None else None
+        hor = hor if hor is not None else ET.Element('horizontal')
+        p['samples'] = ctx.integer(hor, 'samples', 640)
+        p['resolution'] = ctx.num(hor, 'resolution', 1.0)
+        p['min_angle'] = ctx.num(hor, 'min_angle', 0.0)
+        p['max_angle'] = ctx.num(hor, 'max_angle', 0.0)
+        if ver is not None:
+            p['v_samples'] = ctx.integer(ver, 'samples', 1)
+            p['v_resolution'] = ctx.num(ver, 'resolution', 1.0)
+            p['v_min_angle'] = ctx.num(ver, 'min_angle', 0.0)
+            p['v_max_angle'] = ctx.num(ver, 'max_angle', 0.0)
+        else:
+            p['v_samples'], p['v_resolution'] = 1, 1.0
+            p['v_min_angle'], p['v_max_angle'] = 0.0, 0.0
+        rng = ray.find('range')
+        rng = rng if rng is not None else ET.Element('range')
+        p['range_min'] = ctx.num(rng, 'min', 0.0)
+        p['range_max'] = ctx.num(rng, 'max', 0.0)
+        p['range_resolution'] = ctx.num(rng, 'resolution', 0.0)
+        p['noise_mean'], p['noise_stddev'] = _noise(ctx, ray)
+        if p['samples'] < 1:
+            raise ctx.err(hor, '<sensor name=%r>: <samples> must be >= 1' % name)
+        if p['max_angle'] < p['min_angle']:
+            raise ctx.err(hor, '<sensor name=%r>: <max_angle> is less than <min_angle>' % name)
+    elif stype in ('camera', 'depth', 'multicamera', 'wideanglecamera'):
+        cam = el.find('camera')
+        cam = cam if cam is not None else ET.Element('camera')
+        p['horizontal_fov'] = ctx.num(cam, 'horizontal_fov', 1.047)
+        img = cam.find('image')
+        img = img if img is not None else ET.Element('image')
+        p['width'] = ctx.integer(img, 'width', 320)
+        p['height'] = ctx.integer(img, 'height', 240)
+        p['format'] = text_of(img, 'format', 'R8G8B8')
+        clip = cam.find('clip')
+        clip = clip if clip is not None else ET.Element('clip')
+        p['near'] = ctx.num(clip, 'near', 0.1)
+        p['far'] = ctx.num(clip, 'far', 100.0)
+        p['noise_mean'], p['noise_stddev'] = _noise(ctx, cam)
+        if p['width'] < 1 or p['height'] < 1:
+            raise ctx.err(img, '<sensor name=%r>: image width/height must be >= 1' % name)
+        if not 0 < p['horizontal_fov'] < 2 * math.pi + 1e-9:
+            raise ctx.err(cam, '<sensor name=%r>: <horizontal_fov> must be in (0, 2 pi)' % name)
+    elif stype == 'imu':
+        imu = el.find('imu')
+        imu = imu if imu is not None else ET.Element('imu')
+        av_mean = av_std = la_mean = la_std = 0.0
+        av = imu.find('angular_velocity')
+        if av is not None:
+            for axis in ('x', 'y', 'z'):
+                m, s = _noise(ctx, av.find(axis))
+                av_mean, av_std = max(av_mean, m), max(av_std, s)
+        la = imu.find('linear_acceleration')
+        if la is not None:
+            for axis in ('x', 'y', 'z'):
+                m, s = _noise(ctx, la.find(axis))
+                la_mean, la_std = max(la_mean, m), max(la_std, s)
+        old = imu.find('noise')                    # SDF 1.4 <imu><noise><rate>/<accel>
+        if old is not None:
+            m, s = _noise(ctx, ET.Element('x', {}) if old.find('rate') is None else
+                          _wrap_noise(old.find('rate')))
+            av_mean, av_std = max(av_mean, m), max(av_std, s)
+            m, s = _noise(ctx, ET.Element('x', {}) if old.find('accel') is None else
+                          _wrap_noise(old.find('accel')))
+            la_mean, la_std = max(la_mean, m), max(la_std, s)
+        p['angular_velocity_noise_mean'] = av_mean
+        p['angular_velocity_noise_stddev'] = av_std
+        p['linear_acceleration_noise_mean'] = la_mean
+        p['linear_acceleration_noise_stddev'] = la_std
+        p['noise_mean'] = av_mean
+        p['noise_stddev'] = av_std
+        if not sensor.topic:
+            sensor.topic = text_of(imu, 'topic', '') or ''
+    else:
+        ctx.warn(el, '<sensor name=%r type=%r>: sensor type not simulated, kept without data'
+                 % (name, stype))
+    for pl in el.findall('plugin'):
+        sensor.plugins.append(parse_plugin(ctx, pl))
+    return sensor
+
+
+def _wrap_noise(el):
+    w = ET.Element('w')
+    n = ET.SubElement(w, 'noise')
+    for c in el:
+        n.append(c)
+    return w
+
+
+# ------------------------------------------------------------------------------------------
+# links, joints, models
+
+def parse_inertial(ctx, el):
+    if el is None:
+        # SDF default: 1 kg, unit inertia
+        return Inertial(mass=1.0, ixx=1.0, iyy=1.0, izz=1.0)
+    mass = ctx.num(el, 'mass', 1.0)
+    inertial = Inertial(mass=mass, pose=ctx.pose(el))
+    ia = el.find('inertia')
+    if ia is not None:
+        inertial.ixx = ctx.num(ia, 'ixx', 1.0)
+        inertial.ixy = ctx.num(ia, 'ixy', 0.0)
+        inertial.ixz = ctx.num(ia, 'ixz', 0.0)
+        inertial.iyy = ctx.num(ia, 'iyy', 1.0)
+        inertial.iyz = ctx.num(ia, 'iyz', 0.0)
+        inertial.izz = ctx.num(ia, 'izz', 1.0)
+    else:
+        inertial.ixx = inertial.iyy = inertial.izz = 1.0
+    return inertial
+
+
+def parse_link(ctx, el, model_name, prefix, model_static):
+    name = prefix + ctx.name(el, 'link')
+    link = Link(name=name)
+    link.pose = ctx.pose(el, model_name)
+    link.inertial = parse_inertial(ctx, el.find('inertial'))
+    if not model_static:
+        check_inertial(link.inertial, '%s: <link name=%r>' % (ctx.doc.where(el), name))
+    link.gravity = ctx.boolean(el, 'gravity', True)
+    link.self_collide = ctx.boolean(el, 'self_collide', False)
+    link.kinematic = ctx.boolean(el, 'kinematic', False)
+    names = set()
+    for c in el.findall('collision'):
+        cname = ctx.name(c, 'collision')
+        if cname in names:
+            raise ctx.err(c, 'link %r has two collisions named %r' % (name, cname))
+        names.add(cname)
+        geom = parse_geometry(ctx, c.find('geometry'), c)
+        if geom is None:
+            continue
+        col = Collision(name=cname, geometry=geom, pose=ctx.pose(c, name))
+        col.surface = parse_surface(ctx, c.find('surface'))
+        col.laser_retro = ctx.num(c, 'laser_retro', 0.0)
+        link.collisions.append(col)
+    for v in el.findall('visual'):
+        vname = ctx.name(v, 'visual')
+        geom = parse_geometry(ctx, v.find('geometry'), v, optional_mesh=True)
+        if geom is None:
+            continue
+        vis = Visual(name=vname, geometry=geom, pose=ctx.pose(v, name))
+        parse_material(ctx, v.find('material'), vis)
+        tr = ctx.num(v, 'transparency', 0.0)
+        if tr:
+            vis.color = tuple(vis.color[:3]) + (vis.color[3] * (1.0 - tr),)
+        link.visuals.append(vis)
+    for s in el.findall('sensor'):
+        link.sensors.append(parse_sensor(ctx, s, name))
+    return link
+
+
+def check_inertial(inertial, where):
+    """ModelError unless mass > 0 and the inertia tensor is positive definite."""
+    if inertial is None or not inertial.mass > 0:
+        raise ModelError('%s has zero mass (mass %s): every simulated link needs '
+                         '<inertial> with a positive <mass>'
+                         % (where, None if inertial is None else inertial.mass))
+    t = inertial.tensor()
+    if not np.all(np.isfinite(t)):
+        raise ModelError('%s: inertia is not finite' % where)
+    eig = np.linalg.eigvalsh(t)
+    if eig.min() <= 0:
+        raise ModelError('%s: inertia tensor is not positive definite (eigenvalues %s): give '
+                         'ixx, iyy, izz > 0' % (where, ', '.join('%.3g' % e for e in eig)))
+
+
+def parse_joint(ctx, el, model, prefix):
+    name = prefix + ctx.name(el, 'joint')
+    jtype = (el.get('type') or '').strip()
+    if not jtype:
+        raise ctx.err(el, '<joint name=%r> needs a type attribute' % name)
+    if jtype in UNSUPPORTED_JOINTS:
+        raise ctx.err(el, '<joint name=%r type=%r>: joint type not supported (revolute, '
+                          'continuous, prismatic, fixed, ball)' % (name, jtype))
+    if jtype not in SUPPORTED_JOINTS:
+        raise ctx.err(el, '<joint name=%r>: unknown joint type %r' % (name, jtype))
+    parent = text_of(el, 'parent')
+    child = text_of(el, 'child')
+    if not parent or not child:
+        raise ctx.err(el, '<joint name=%r> needs <parent> and <child>' % name)
+
+    def link_name(n):
+        if n == 'world':
+            return n
+        if model.link(prefix + n) is not None:
+            return prefix + n
+        if model.link(n) is not None:
+            return n
+        raise ctx.err(el, 'joint %r refers to unknown link %r' % (name, n))
+
+    parent, child = link_name(parent), link_name(child)
+    if child == 'world':
+        raise ctx.err(el, 'joint %r: child cannot be the world' % name)
+    if parent == child:
+        raise ctx.err(el, 'joint %r: parent and child are the same link %r' % (name, child))
+    child_link = model.link(child)
+    jpose_child = ctx.pose(el, child)
+    jframe = child_link.pose * jpose_child           # joint frame in the model frame
+    joint = Joint(name=name, type=jtype, parent=parent, child=child)
+    joint.anchor = jframe.p.copy()
+    ax = el.find('axis')
+    xyz = (0.0, 0.0, 1.0)
+    if ax is not None:
+        xyz = ctx.floats(ax, 'xyz', 3, (0.0, 0.0, 1.0))
+        in_model = ctx.boolean(ax, 'use_parent_model_frame', ctx.v14)
+        xyz_el = ax.find('xyz')
+        exp = xyz_el.get('expressed_in') if xyz_el is not None else None
+        if exp:
+            if exp == '__model__':
+                in_model = True
+            elif exp == child:
+                in_model = False
+            else:
+                raise ctx.err(xyz_el, '<xyz expressed_in=%r>: only the joint frame or '
+                                      '__model__ are supported' % exp)
+        lim = ax.find('limit')
+        if lim is not None and jtype in ('revolute', 'prismatic'):
+            lo = ctx.num(lim, 'lower', -1e16)
+            hi = ctx.num(lim, 'upper', 1e16)
+            if lo > -1e15:
+                joint.lower = lo
+            if hi < 1e15:
+                joint.upper = hi
+            if joint.lower is not None and joint.upper is not None and joint.lower > joint.upper:
+                raise ctx.err(lim, 'joint %r: <lower> %g is greater than <upper> %g'
+                              % (name, joint.lower, joint.upper))
+        if lim is not None:
+            eff = ctx.num(lim, 'effort', -1.0)
+            vel = ctx.num(lim, 'velocity', -1.0)
+            joint.effort = eff if eff >= 0 else None
+            joint.velocity = vel if vel >= 0 else None
+        dyn = ax.find('dynamics')
+        if dyn is not None:
+            joint.damping = ctx.num(dyn, 'damping', 0.0)
+            joint.friction = ctx.num(dyn, 'friction', 0.0)
+    else:
+        in_model = ctx.v14
+    if jtype not in ('fixed', 'ball'):
+        v = np.array(xyz, dtype=float)
+        n = np.linalg.norm(v)
+        if n == 0:
+            raise ctx.err(el, 'joint %r: <axis><xyz> must not be zero' % name)
+        v = v / n
+        joint.axis = v if in_model else jframe.rotate(v)
+    if jtype == 'continuous':
+        joint.lower = joint.upper = None
+    parent_pose = Pose() if parent == 'world' else model.link(parent).pose
+    joint.origin = parent_pose.inverse() * jframe
+    return joint

@@ -1,0 +1,496 @@
+"""URDF (with Gazebo's <gazebo> extensions and <transmission>s) -> the description data model.
+
+Follows what Gazebo classic does when it spawns a URDF (sdformat's URDF->SDF converter):
+- links joined by a fixed joint are lumped into their parent (mass, centre of mass and inertia
+  combined; collisions, visuals and sensors re-posed) unless the joint's
+  <gazebo reference="JOINT"> sets <disableFixedJointLumping> or <preserveFixedJoint>;
+- a link without <inertial> that is not lumped is left out, with all links below it (the
+  converter's "urdf2sdf: link[NAME] has no inertia, not modeled in sdf"): a warning here;
+- a root link named 'world' fixes the model to the world.
+Link poses come from forward kinematics at zero joint positions; the model frame is the root
+link frame.
+"""
+import math
+import os
+
+import numpy as np
+
+from ode_sim.description import materials
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model,
+                                       ModelError, Visual)
+from ode_sim.description.resolve import ModelPaths
+from ode_sim.description.sdf_elements import check_inertial, load_mesh_geometry, parse_sensor
+from ode_sim.description.xmldoc import ParseContext, parse_xml
+from ode_sim.description.transforms import Pose
+from ode_sim.description.urdf_ext import GazeboExtensions
+
+LUMP = '_fixed_joint_lump__'
+_IGNORED_JOINT_EXT = ('implicitSpringDamper', 'provideFeedback', 'stopCfm', 'stopErp',
+                      'cfmDamping', 'springReference', 'springStiffness', 'fudgeFactor')
+
+
+class _ULink:
+    def __init__(self, name, el):
+        self.name = name
+        self.el = el
+        self.inertial = None
+        self.collisions = []        # Collision (pose in this link), urdf name
+        self.visuals = []
+        self.parent_joint = None
+        self.child_joints = []
+
+
+class _UJoint:
+    def __init__(self, name, jtype, el):
+        self.name = name
+        self.type = jtype
+        self.el = el
+        self.parent = ''
+        self.child = ''
+        self.origin = Pose()
+        self.axis = np.array([1.0, 0.0, 0.0])
+        self.lower = self.upper = self.effort = self.velocity = None
+        self.damping = self.friction = 0.0
+
+
+class _Parser(GazeboExtensions):
+    def __init__(self, text, source, model_name, paths):
+        self.source = source
+        self.doc = parse_xml(text, source)
+        self.paths = paths or ModelPaths()
+        self.base_dir = os.path.dirname(os.path.abspath(source)) if os.path.exists(source) \
+            else os.getcwd()
+        self.warnings = []
+        self.ctx = ParseContext(self.doc, self.paths, self.base_dir, self.warnings, (1, 6))
+        self.model_name = model_name
+        self.materials = {}
+
+    # -------------------------------------------------------------------- helpers
+    def err(self, el, msg):
+        return self.doc.error(el, msg)
+
+    def warn(self, el, msg):
+        self.warnings.append('%s: %s' % (self.doc.where(el), msg))
+
+    def attr(self, el, name, what=None):
+        v = el.get(name)
+        if v is None or not v.strip():
+            raise self.err(el, '<%s> needs a %s attribute' % (what or el.tag, name))
+        return v.strip()
+
+    def nums(self, el, name, n, default=None, what=None):
+        v = el.get(name)
+        if v is None or not v.strip():
+            if default is None:
+                raise self.err(el, '<%s> needs a %s attribute' % (what or el.tag, name))
+            return default
+        try:
+            vals = [float(x) for x in v.split()]
+        except ValueError:
+            vals = []
+        if len(vals) != n or not all(math.isfinite(x) for x in vals):
+            raise self.err(el, '<%s %s=%r>: expected %d number%s'
+                           % (what or el.tag, name, v, n, 's' if n > 1 else ''))
+        return vals if n > 1 else vals[0]
+
+    def origin(self, el):
+        o = el.find('origin')
+        if o is None:
+            return Pose()
+        xyz = self.nums(o, 'xyz', 3, [0.0, 0.0, 0.0])
+        rpy = self.nums(o, 'rpy', 3, [0.0, 0.0, 0.0])
+        return Pose.from_xyz_rpy(xyz, rpy)
+
+    def ext_float(self, el):
+        try:
+            v = float((el.text or '').strip())
+        except ValueError:
+            raise self.err(el, '<%s> must be a number, got %r' % (el.tag, (el.text or '').strip()))
+        if not math.isfinite(v):
+            raise self.err(el, '<%s> must be finite' % el.tag)
+        return v
+
+    # -------------------------------------------------------------------- elements
+    def geometry(self, owner, link_name, optional_mesh):
+        g = owner.find('geometry')
+        what = '<%s> of link %r' % (owner.tag, link_name)
+        if g is None:
+            raise self.err(owner, '%s needs <geometry>' % what)
+        shapes = [c for c in g if isinstance(c.tag, str)]
+        if not shapes:
+            raise self.err(g, '<geometry> of %s is empty' % what)
+        s = shapes[0]
+        if s.tag == 'box':
+            size = self.nums(s, 'size', 3)
+            if min(size) <= 0:
+                raise self.err(s, '<box size> must be positive in %s' % what)
+            return Geometry('box', size=tuple(size))
+        if s.tag == 'cylinder':
+            r, length = self.nums(s, 'radius', 1), self.nums(s, 'length', 1)
+            if r <= 0 or length <= 0:
+                raise self.err(s, '<cylinder> radius and length must be positive in %s' % what)
+            return Geometry('cylinder', radius=r, length=length)
+        if s.tag == 'sphere':
+            r = self.nums(s, 'radius', 1)
+            if r <= 0:
+                raise self.err(s, '<sphere radius> must be positive in %s' % what)
+            return Geometry('sphere', radius=r)
+        if s.tag == 'mesh':
+            uri = self.attr(s, 'filename', 'mesh')
+            scale = self.nums(s, 'scale', 3, [1.0, 1.0, 1.0])
+            return load_mesh_geometry(self.ctx, s, uri, scale, optional_mesh)
+        raise self.err(s, '<%s> geometry is not supported in %s (box, cylinder, sphere, mesh)'
+                       % (s.tag, what))
+
+    def material_color(self, mat, link_name):
+        """RGBA of a visual's <material>, or None."""
+        if mat is None:
+            return None
+        name = (mat.get('name') or '').strip()
+        c = mat.find('color')
+        if c is not None:
+            rgba = tuple(self.nums(c, 'rgba', 4))
+            if name and name not in self.materials:
+                self.materials[name] = rgba
+            return rgba
+        if name in self.materials:
+            return self.materials[name]
+        if mat.find('texture') is not None:
+            return None
+        if name:
+            raise self.err(mat, "link '%s' material '%s' undefined: define <material name=%r> "
+                                "with <color rgba=...> at the robot level" % (link_name, name, name))
+        return None
+
+    def parse_link(self, el):
+        name = self.attr(el, 'name', 'link')
+        ul = _ULink(name, el)
+        ine = el.find('inertial')
+        if ine is not None:
+            m = ine.find('mass')
+            if m is None:
+                raise self.err(ine, "<inertial> of link '%s' needs <mass value=...>" % name)
+            mass = self.nums(m, 'value', 1, what='mass')
+            inertial = Inertial(mass=mass, pose=self.origin(ine))
+            ia = ine.find('inertia')
+            if ia is None:
+                raise self.err(ine, "<inertial> of link '%s' needs <inertia ixx= ixy= ixz= iyy= "
+                                    "iyz= izz=>" % name)
+            for k in ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz'):
+                setattr(inertial, k, self.nums(ia, k, 1, what='inertia'))
+            ul.inertial = inertial
+        for c in el.findall('collision'):
+            geom = self.geometry(c, name, optional_mesh=False)
+            ul.collisions.append((Collision(name=(c.get('name') or '').strip(), geometry=geom,
+                                            pose=self.origin(c)), name))
+        for v in el.findall('visual'):
+            geom = self.geometry(v, name, optional_mesh=True)
+            color = self.material_color(v.find('material'), name)
+            if geom is None:
+                continue
+            vis = Visual(name=(v.get('name') or '').strip(), geometry=geom, pose=self.origin(v))
+            if color is not None:
+                vis.color = color
+            ul.visuals.append((vis, name))
+        return ul
+
+    def parse_joint(self, el, links):
+        name = self.attr(el, 'name', 'joint')
+        jtype = self.attr(el, 'type', 'joint name=%r' % name)
+        if jtype in ('floating', 'planar'):
+            raise self.err(el, "joint '%s' of type %s is not supported (revolute, continuous, "
+                               "prismatic, fixed)" % (name, jtype))
+        if jtype not in ('revolute', 'continuous', 'prismatic', 'fixed'):
+            raise self.err(el, "joint '%s' has unknown type %r" % (name, jtype))
+        j = _UJoint(name, jtype, el)
+        for tag in ('parent', 'child'):
+            t = el.find(tag)
+            if t is None:
+                raise self.err(el, "joint '%s' needs <%s link=...>" % (name, tag))
+            ln = self.attr(t, 'link', tag)
+            if ln not in links:
+                raise self.err(t, "joint '%s' refers to unknown link '%s'" % (name, ln))
+            setattr(j, tag, ln)
+        if j.parent == j.child:
+            raise self.err(el, "joint '%s': parent and child are the same link" % name)
+        j.origin = self.origin(el)
+        ax = el.find('axis')
+        if ax is not None and jtype != 'fixed':
+            a = np.array(self.nums(ax, 'xyz', 3, [1.0, 0.0, 0.0]))
+            n = np.linalg.norm(a)
+            if n == 0:
+                raise self.err(ax, "joint '%s': <axis xyz> must not be zero" % name)
+            j.axis = a / n
+        lim = el.find('limit')
+        if lim is not None:
+            j.effort = self.nums(lim, 'effort', 1, what='limit')
+            j.velocity = self.nums(lim, 'velocity', 1, what='limit')
+            if jtype in ('revolute', 'prismatic'):
+                j.lower = self.nums(lim, 'lower', 1, 0.0)
+                j.upper = self.nums(lim, 'upper', 1, 0.0)
+                if j.lower > j.upper:
+                    self.warn(lim, "joint '%s': lower limit %g > upper %g, swapped (as Gazebo "
+                                   "does)" % (name, j.lower, j.upper))
+                    j.lower, j.upper = j.upper, j.lower
+        elif jtype in ('revolute', 'prismatic'):
+            raise self.err(el, "joint '%s' is of type %s but has no <limit lower= upper= "
+                               "effort= velocity=>" % (name, jtype))
+        dyn = el.find('dynamics')
+        if dyn is not None:
+            j.damping = self.nums(dyn, 'damping', 1, 0.0)
+            j.friction = self.nums(dyn, 'friction', 1, 0.0)
+        if el.find('mimic') is not None:
+            self.warn(el.find('mimic'), "joint '%s': <mimic> is ignored (the joint moves on its "
+                                        "own)" % name)
+        return j
+
+    # -------------------------------------------------------------------- main
+    def parse(self):
+        root = self.doc.root
+        if root.tag != 'robot':
+            raise self.err(root, 'expected <robot> as the root element, got <%s>' % root.tag)
+        for el in root.iter():
+            if isinstance(el.tag, str) and el.tag.startswith('xacro:'):
+                raise self.err(el, '<%s> found: this is a xacro file, expand it with xacro '
+                                   'first' % el.tag)
+        robot_name = (root.get('name') or '').strip()
+        if not robot_name:
+            raise self.err(root, '<robot> needs a name attribute')
+        for m in root.findall('material'):
+            name = self.attr(m, 'name', 'material')
+            c = m.find('color')
+            if c is not None:
+                self.materials[name] = tuple(self.nums(c, 'rgba', 4))
+
+        links = {}
+        order = []
+        for el in root.findall('link'):
+            ul = self.parse_link(el)
+            if ul.name in links:
+                raise self.err(el, "two links named '%s'" % ul.name)
+            links[ul.name] = ul
+            order.append(ul.name)
+        if not links:
+            raise self.err(root, 'the robot has no <link>')
+        joints = {}
+        for el in root.findall('joint'):
+            j = self.parse_joint(el, links)
+            if j.name in joints:
+                raise self.err(el, "two joints named '%s'" % j.name)
+            child = links[j.child]
+            if child.parent_joint is not None:
+                raise self.err(el, "link '%s' has two parent joints '%s' and '%s'"
+                               % (j.child, child.parent_joint.name, j.name))
+            child.parent_joint = j
+            links[j.parent].child_joints.append(j)
+            joints[j.name] = j
+        roots = [n for n in order if links[n].parent_joint is None]
+        if len(roots) > 1:
+            raise self.err(root, 'the robot has %d root links (%s): every link but one needs a '
+                                 'parent joint' % (len(roots), ', '.join(repr(r) for r in roots)))
+        if not roots:
+            raise self.err(root, 'the joints form a loop: no root link')
+        root_name = roots[0]
+        reached = set()
+        stack = [root_name]
+        while stack:
+            n = stack.pop()
+            reached.add(n)
+            stack.extend(j.child for j in links[n].child_joints)
+        if len(reached) != len(links):
+            loop = [n for n in order if n not in reached]
+            raise self.err(links[loop[0]].parent_joint.el,
+                           "the joints form a loop through link '%s' (joint '%s')"
+                           % (loop[0], links[loop[0]].parent_joint.name))
+
+        model = Model(name=self.model_name or robot_name, source=self.source)
+        link_ext, joint_ext = self.parse_gazebo(root, links, joints, model)
+        self.build(model, links, joints, root_name, order, link_ext, joint_ext)
+        self.parse_transmissions(root, model, joints)
+        model.warnings = self.warnings
+        return model
+
+    def build(self, model, links, joints, root_name, order, link_ext, joint_ext):
+        for name, gs in joint_ext.items():
+            for g in gs:
+                for c in g:
+                    if isinstance(c.tag, str) and c.tag not in (
+                            'disableFixedJointLumping', 'preserveFixedJoint') + _IGNORED_JOINT_EXT:
+                        self.warn(c, "<gazebo reference='%s'><%s> is ignored" % (name, c.tag))
+
+        def reducible(j):
+            return (j.type == 'fixed' and j.parent != 'world'
+                    and not self.joint_flag(joint_ext, j.name, 'disableFixedJointLumping')
+                    and not self.joint_flag(joint_ext, j.name, 'preserveFixedJoint'))
+
+        world_root = root_name == 'world'
+        # forward kinematics of every URDF link; surviving link and pose relative to it
+        X, surv, rel = {}, {}, {}
+        pre = []                    # DFS pre-order
+        stack = [root_name]
+        while stack:
+            n = stack.pop()
+            pre.append(n)
+            ul = links[n]
+            j = ul.parent_joint
+            if j is None:
+                X[n] = Pose()
+                surv[n], rel[n] = n, Pose()
+            else:
+                X[n] = X[j.parent] * j.origin
+                if reducible(j):
+                    surv[n] = surv[j.parent]
+                    rel[n] = rel[j.parent] * j.origin
+                else:
+                    surv[n], rel[n] = n, Pose()
+            stack.extend(reversed([cj.child for cj in ul.child_joints]))
+        if world_root:
+            if links['world'].collisions or links['world'].visuals or links['world'].inertial:
+                self.warn(links['world'].el, "link 'world' is the world: its inertial, "
+                                             "collisions and visuals are ignored")
+        groups = {}
+        for n in pre:
+            if n == 'world' and world_root:
+                continue
+            groups.setdefault(surv[n], []).append(n)
+
+        # Gazebo leaves out non-lumped links without inertia, and everything below them
+        dropped = set()
+        for s in [n for n in pre if n in groups]:
+            if s in dropped:
+                continue
+            if all(links[m].inertial is None for m in groups[s]):
+                below = []
+                st = [s]
+                while st:
+                    x = st.pop()
+                    for cj in links[x].child_joints:
+                        below.append(cj.child)
+                        st.append(cj.child)
+                dropped.add(s)
+                dropped.update(below)
+                lost = sorted(set(surv[b] for b in below) - {s})
+                self.warn(links[s].el,
+                          "link '%s' has no <inertial>: like Gazebo (urdf2sdf: link[%s] has no "
+                          "inertia, not modeled in sdf) it is left out of the simulation%s"
+                          % (s, s, ', with the links below it: %s' % ', '.join(lost)
+                             if lost else ''))
+        survivors = [n for n in pre if n in groups and n not in dropped]
+        if not survivors:
+            raise ModelError("%s: link '%s' has zero mass (no <inertial>): the robot has no "
+                             "link to simulate; give it <inertial> with a positive <mass>"
+                             % (self.doc.where(links[root_name].el), root_name))
+
+        for s in survivors:
+            link = Link(name=s, pose=X[s])
+            members = groups[s]
+            link.inertial = self.lumped_inertial(links, members, rel)
+            check_inertial(link.inertial, "%s: link '%s'" % (self.source, s)
+                           + (' (with lumped %s)' % ', '.join(members[1:]) if members[1:] else ''))
+            for m in members[1:]:
+                link.lumped[m] = rel[m]
+            ci = vi = 0
+            used = set()
+            for m in members:
+                ext = self.link_extension(m, link_ext)
+                for col, _ in links[m].collisions:
+                    c = Collision(name=self.shape_name(s, m, col.name, '_collision', ci, used),
+                                  geometry=col.geometry, pose=rel[m] * col.pose)
+                    c.surface = self.surface_for(ext, m)
+                    if 'laserRetro' in ext:
+                        c.laser_retro = ext['laserRetro']
+                    link.collisions.append(c)
+                    ci += 1
+                for vis, _ in links[m].visuals:
+                    v = Visual(name=self.shape_name(s, m, vis.name, '_visual', vi, used),
+                               geometry=vis.geometry, pose=rel[m] * vis.pose, color=vis.color)
+                    if 'material' in ext:
+                        v.material_name = ext['material']
+                        v.color = materials.material_color(ext['material'], self.warnings,
+                                                           ext['material_where'])
+                    if 'visual_diffuse' in ext:
+                        v.color = ext['visual_diffuse']
+                    link.visuals.append(v)
+                    vi += 1
+                if ext.get('selfCollide'):
+                    link.self_collide = True
+                if ext.get('gravity') is False:
+                    link.gravity = False
+                for sel in ext.get('sensors', []):
+                    sensor = parse_sensor(self.ctx, sel, s)
+                    sensor.pose = rel[m] * sensor.pose
+                    link.sensors.append(sensor)
+            model.links.append(link)
+
+        alive = set(survivors)
+        for n in pre:
+            j = links[n].parent_joint
+            if j is None or n not in alive or surv[n] != n:
+                continue
+            parent = 'world' if (j.parent == 'world' and world_root) else surv[j.parent]
+            joint = Joint(name=j.name, type=j.type, parent=parent, child=n)
+            joint.anchor = X[n].p.copy()
+            if j.type != 'fixed':
+                joint.axis = X[n].rotate(j.axis)
+            joint.lower, joint.upper = j.lower, j.upper
+            joint.effort, joint.velocity = j.effort, j.velocity
+            joint.damping, joint.friction = j.damping, j.friction
+            joint.origin = (Pose() if parent == 'world' else rel[j.parent]) * j.origin
+            model.joints.append(joint)
+        model.canonical_link = survivors[0]
+        model.urdf = self.doc_text
+
+    def lumped_inertial(self, links, members, rel):
+        parts = [(m, links[m].inertial) for m in members if links[m].inertial is not None]
+        if len(parts) == 1 and parts[0][0] == members[0]:
+            i = parts[0][1]
+            return Inertial(mass=i.mass, pose=i.pose.copy(), ixx=i.ixx, ixy=i.ixy, ixz=i.ixz,
+                            iyy=i.iyy, iyz=i.iyz, izz=i.izz)
+        total = sum(i.mass for _, i in parts)
+        if total <= 0:
+            return Inertial(mass=total)
+        coms, tensors = [], []
+        for m, i in parts:
+            f = rel[m] * i.pose                     # inertial frame in the surviving link
+            R = f.rotation()
+            coms.append(f.p)
+            tensors.append(R @ i.tensor() @ R.T)
+        com = sum(i.mass * c for (_, i), c in zip(parts, coms)) / total
+        t = np.zeros((3, 3))
+        for (_, i), c, ti in zip(parts, coms, tensors):
+            d = c - com
+            t += ti + i.mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
+        return Inertial(mass=total, pose=Pose(com), ixx=t[0, 0], ixy=t[0, 1], ixz=t[0, 2],
+                        iyy=t[1, 1], iyz=t[1, 2], izz=t[2, 2])
+
+    @staticmethod
+    def shape_name(surv, member, urdf_name, suffix, index, used):
+        """Gazebo's names: LINK_collision, LINK_collision_1, ...; shapes of lumped links
+        SURV_fixed_joint_lump__LUMPED_collision."""
+        name = (urdf_name or member) + suffix
+        if index > 0:
+            name += '_%d' % index
+        if not name.startswith(surv):
+            name = surv + LUMP + name
+        base, k = name, 1
+        while name in used:
+            name = '%s_%d' % (base, k)
+            k += 1
+        used.add(name)
+        return name
+
+def parse_urdf(text, source, model_name, paths=None):
+    """Model from URDF text. `source` names the file (or parameter) in messages and is the base
+    for relative mesh file names; `model_name` names the model (the robot name if empty)."""
+    p = _Parser(text, source, model_name, paths)
+    p.doc_text = text.decode('utf-8', 'replace') if isinstance(text, bytes) else text
+    return p.parse()
+
+
+def load_urdf(path, model_name, paths=None):
+    try:
+        with open(path, 'rb') as f:
+            data = f.read()
+    except OSError as e:
+        raise ModelError('%s: cannot read URDF file: %s' % (path, e.strerror or e))
+    return parse_urdf(data, path, model_name, paths)

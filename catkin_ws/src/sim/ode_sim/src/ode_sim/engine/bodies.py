@@ -1,0 +1,365 @@
+"""Simulated links, joints and models: the engine's handles on the ODE bodies and joints that
+PhysicsWorld (physics.py) builds. Conventions in physics.py's docstring."""
+import ctypes
+
+import numpy as np
+import ode
+
+from ode_sim.description.model import ModelError
+from ode_sim.description.transforms import Pose, quat_from_axis_angle
+
+ENV = ode.environment
+
+# Joint parameter numbers of the ODE library actually linked (libode 0.16): PyODE 1.2 still
+# exports the pre-0.13 numbering (ode.ParamFMax == 3, which is dParamLoVel in 0.16), so setting
+# a motor's force through ode.ParamFMax silently does nothing. These are dParam* of 0.16.
+P_LO_STOP, P_HI_STOP, P_VEL, P_LO_VEL, P_HI_VEL, P_FMAX = 0, 1, 2, 3, 4, 5
+
+# ODE worlds, spaces and joint groups are never freed. PyODE's objects clear their references
+# in arbitrary order when the garbage collector breaks a cycle (or the interpreter exits), so a
+# world could be destroyed before its bodies (dBodyDestroy on freed memory: segfault). Bodies,
+# joints and geoms are still freed; only these small containers stay, one set per PhysicsWorld.
+
+
+def keep_alive(*objs):
+    for obj in objs:
+        ctypes.pythonapi.Py_IncRef(ctypes.py_object(obj))
+
+
+def ode_q(q):
+    """(x, y, z, w) -> ODE's (w, x, y, z)."""
+    return (q[3], q[0], q[1], q[2])
+
+
+def ros_q(q):
+    return (q[1], q[2], q[3], q[0])
+
+
+class SimLink:
+    """A link of a simulated model. Static links have no body."""
+
+    def __init__(self, model, desc, body, com, static_pose=None):
+        self.model = model
+        self.name = desc.name
+        self.desc = desc
+        self.body = body
+        self.com = com                  # Pose of the COM (body) frame in the link frame
+        self._com_inv = com.inverse()
+        self._static_pose = static_pose
+        self.geoms = []
+        self.prev_vel = None            # for acceleration tracking
+        self.accel = np.zeros(3)
+
+    def pose(self):
+        """The link frame in the world."""
+        if self.body is None:
+            return self._static_pose
+        b = self.body
+        return Pose(b.getPosition(), ros_q(b.getQuaternion())) * self._com_inv
+
+    def frame_pose(self, name):
+        """A frame lumped into this link (URDF fixed joint) or the link itself, in the world."""
+        if name == self.name or name not in self.desc.lumped:
+            return self.pose()
+        return self.pose() * self.desc.lumped[name]
+
+    def velocity(self, point=None):
+        """(linear velocity of `point` (world; default the link origin), angular velocity),
+        both in the world frame."""
+        if self.body is None:
+            return np.zeros(3), np.zeros(3)
+        if point is None:
+            point = self.pose().p
+        return (np.array(self.body.getPointVel(tuple(point))),
+                np.array(self.body.getAngularVel()))
+
+    def wake(self):
+        if self.body is not None:
+            self.model.world._rouse(self.model.space)
+            self.body.enable()
+
+    def add_force(self, force, point=None):
+        if self.body is not None:
+            self.wake()
+            if point is None:
+                self.body.addForce(tuple(force))
+            else:
+                self.body.addForceAtPos(tuple(force), tuple(point))
+
+    def add_torque(self, torque):
+        if self.body is not None:
+            self.wake()
+            self.body.addTorque(tuple(torque))
+
+    def set_state(self, pose, linear, angular):
+        """Move the link frame to `pose` (world) with this world twist of its COM; wakes it."""
+        if self.body is None:
+            return
+        target = pose * self.com
+        self.wake()
+        self.body.setPosition(tuple(float(v) for v in target.p))
+        self.body.setQuaternion(ode_q(target.q))
+        self.body.setLinearVel(tuple(float(v) for v in linear))
+        self.body.setAngularVel(tuple(float(v) for v in angular))
+
+
+class SimJoint:
+    """A joint between two links (or a link and the world)."""
+
+    def __init__(self, model, desc, joint, parent, child):
+        self.model = model
+        self.name = desc.name
+        self.desc = desc
+        self.type = desc.type
+        self.joint = joint
+        self.parent = parent            # SimLink or None (world)
+        self.child = child
+        self.effort_cmd = 0.0           # applied every step
+        self.vel_cmd = None             # (velocity, fmax) motor target, or None
+        self.pos_cmd = None             # position target (servoed by the motor), or None
+        self._applied = 0.0             # effort added by torque this step (not in feedback)
+        self.active = bool(desc.damping)
+        self.world_ref = model.world
+        self.limit_effort = desc.effort if desc.effort and desc.effort > 0 else None
+        self.limit_velocity = desc.velocity if desc.velocity and desc.velocity > 0 else None
+
+    @property
+    def hinge(self):
+        return self.type in ('revolute', 'continuous')
+
+    @property
+    def slider(self):
+        return self.type == 'prismatic'
+
+    def position(self):
+        if self.hinge:
+            return self.joint.getAngle()
+        if self.slider:
+            return self.joint.getPosition()
+        return 0.0
+
+    def velocity(self):
+        if self.hinge:
+            return self.joint.getAngleRate()
+        if self.slider:
+            return self.joint.getPositionRate()
+        return 0.0
+
+    def effort(self):
+        """The effort the joint applied to its child in the last step about/along the axis
+        (command, motor, limits and damping: the constraint feedback)."""
+        if not (self.hinge or self.slider):
+            return 0.0
+        fb = self.joint.getFeedback()
+        if fb is None:
+            return 0.0
+        ax = self.joint.getAxis()
+        v = fb[1] if self.hinge else fb[0]
+        return v[0] * ax[0] + v[1] * ax[1] + v[2] * ax[2] + self._applied
+
+    def add_effort(self, effort):
+        """Add a torque (hinge) or force (slider) along the axis for the next step."""
+        if self.hinge:
+            self.joint.addTorque(float(effort))
+        elif self.slider:
+            self.joint.addForce(float(effort))
+
+    def _motor(self, vel, fmax):
+        self.joint.setParam(P_VEL, vel)
+        self.joint.setParam(P_FMAX, fmax)
+
+    def _idle_motor(self):
+        """No command: the motor holds zero velocity with the joint's friction (or is off)."""
+        if self.desc.friction > 0:
+            self._motor(0.0, self.desc.friction)
+        else:
+            self.joint.setParam(P_FMAX, 0.0)
+
+    def _update_active(self):
+        self.active = bool(self.pos_cmd is not None or self.effort_cmd or self.desc.damping)
+        self.world_ref._refresh_active()
+
+    def set_effort(self, effort):
+        """Apply this effort every step until changed (clamped to the URDF effort limit)."""
+        self.vel_cmd = None
+        self.pos_cmd = None
+        if self.limit_effort is not None:
+            effort = max(-self.limit_effort, min(self.limit_effort, effort))
+        self.effort_cmd = float(effort)
+        if self.hinge or self.slider:
+            self._idle_motor()
+        self._update_active()
+
+    def set_velocity(self, velocity, fmax=None):
+        """Drive the joint at `velocity` with at most `fmax` (default: the effort limit, else
+        a large force), as Gazebo's SetParam("vel") / SetParam("fmax")."""
+        if fmax is None:
+            fmax = self.limit_effort if self.limit_effort is not None else 1e6
+        self.pos_cmd = None
+        self.effort_cmd = 0.0
+        self.vel_cmd = (float(velocity), float(fmax))
+        if self.hinge or self.slider:
+            self._motor(self.vel_cmd[0], self.vel_cmd[1])
+            self.child.wake()
+        self._update_active()
+
+    def set_position_target(self, position):
+        """Servo to `position` with the joint motor (effort and velocity limits honoured)."""
+        self.vel_cmd = None
+        self.effort_cmd = 0.0
+        self.pos_cmd = float(position)
+        self.child.wake()
+        self._update_active()
+
+    def release(self):
+        self.vel_cmd = None
+        self.pos_cmd = None
+        self.effort_cmd = 0.0
+        if self.hinge or self.slider:
+            self._idle_motor()
+        self._update_active()
+
+    def pre_step(self, dt):
+        """Per-step work of an active joint: position servo, effort command, damping."""
+        j = self.joint
+        if self.pos_cmd is not None:
+            vel = (self.pos_cmd - self.position()) / dt
+            vmax = self.limit_velocity
+            if vmax is not None:
+                vel = max(-vmax, min(vmax, vel))
+            self._motor(vel, self.limit_effort if self.limit_effort is not None else 1e6)
+        effort = self.effort_cmd
+        if self.desc.damping:
+            effort -= self.desc.damping * self.velocity()
+        self._applied = effort
+        if effort:
+            if self.hinge:
+                j.addTorque(effort)
+            else:
+                j.addForce(effort)
+
+
+class SimModel:
+    def __init__(self, world, desc):
+        self.world = world
+        self.name = desc.name
+        self.desc = desc
+        self.static = desc.static
+        self.links = {}
+        self.joints = {}
+        self.space = None
+        self.initial_pose = desc.pose.copy()
+        self.canonical = None           # SimLink whose pose is the model pose
+
+    def pose(self):
+        """The model pose in the world (the canonical link's frame composed with its pose in the
+        model, so a freshly spawned model reports its spawn pose)."""
+        if self.canonical is None:
+            return self.initial_pose
+        return self.canonical.pose() * self.canonical.desc.pose.inverse()
+
+    def twist(self):
+        """(linear, angular) world velocity of the model frame origin."""
+        if self.canonical is None or self.canonical.body is None:
+            return np.zeros(3), np.zeros(3)
+        return self.canonical.velocity(self.pose().p)
+
+    def bodies(self):
+        return [l.body for l in self.links.values() if l.body is not None]
+
+    def wake(self):
+        """Wake every body (after a teleport, a push, a reset)."""
+        if not self.static:
+            self.world._rouse(self.space)
+            for b in self.bodies():
+                b.enable()
+
+    def set_pose(self, pose):
+        """Move the whole model rigidly so that its pose becomes `pose`."""
+        if self.static:
+            return
+        self.wake()
+        delta = pose * self.pose().inverse()
+        for link in self.links.values():
+            b = link.body
+            if b is None:
+                continue
+            bp = delta * Pose(b.getPosition(), ros_q(b.getQuaternion()))
+            b.setPosition(tuple(bp.p))
+            b.setQuaternion(ode_q(bp.q))
+            b.enable()
+
+    def set_twist(self, linear, angular):
+        """Give every body the rigid-body velocity of the model frame moving at (linear, angular)."""
+        self.wake()
+        origin = self.pose().p
+        lin = np.asarray(linear, dtype=float)
+        ang = np.asarray(angular, dtype=float)
+        for b in self.bodies():
+            r = np.array(b.getPosition()) - origin
+            b.setLinearVel(tuple(lin + np.cross(ang, r)))
+            b.setAngularVel(tuple(ang))
+
+    def set_configuration(self, positions):
+        """Place the links for the given joint positions {name: value} (others keep theirs)
+        with the model pose unchanged, and zero all velocities (set_model_configuration)."""
+        self.wake()
+        for name in positions:
+            if name not in self.joints:
+                raise ModelError("model '%s' has no joint '%s'" % (self.name, name))
+        q = {n: j.position() for n, j in self.joints.items()}
+        q.update({k: float(v) for k, v in positions.items()})
+        fixed = any(j.parent == 'world' for j in self.desc.joints)
+        model_pose = self.initial_pose if fixed else self.pose()
+        rel = forward_kinematics(self.desc, q)
+        for name, link in self.links.items():
+            if link.body is None or name not in rel:
+                continue
+            bp = model_pose * rel[name] * link.desc.pose * link.com
+            link.body.setPosition(tuple(bp.p))
+            link.body.setQuaternion(ode_q(bp.q))
+        self.set_twist((0, 0, 0), (0, 0, 0))
+        for b in self.bodies():
+            b.enable()
+
+
+def welded_to_world(desc):
+    """Links held by the world through fixed joints only (a URDF 'world' link, an SDF joint to
+    'world'): they get no body, so they neither move nor fight contacts with the static world."""
+    welded = {'world'}
+    grew = True
+    while grew:
+        grew = False
+        for j in desc.joints:
+            if j.type == 'fixed' and j.parent in welded and j.child not in welded:
+                welded.add(j.child)
+                grew = True
+    welded.discard('world')
+    return welded
+
+
+def forward_kinematics(desc, q):
+    """Rigid motion of each link relative to the zero configuration, in the model frame:
+    {link: Pose} such that link pose (model frame) = motion * link.pose. Roots (links no joint
+    leads to) and the world do not move."""
+    children = {}
+    for j in desc.joints:
+        children.setdefault(j.parent, []).append(j)
+    has_parent = {j.child for j in desc.joints}
+    motion = {'world': Pose()}
+    motion.update({l.name: Pose() for l in desc.links if l.name not in has_parent})
+    stack = list(motion)
+    while stack:
+        parent = stack.pop()
+        for j in children.get(parent, []):
+            v = q.get(j.name, 0.0)
+            if j.type in ('revolute', 'continuous'):
+                rot = Pose((0, 0, 0), quat_from_axis_angle(j.axis, v))
+                local = Pose(j.anchor) * rot * Pose(-np.asarray(j.anchor))
+            elif j.type == 'prismatic':
+                local = Pose(np.asarray(j.axis) * v)
+            else:
+                local = Pose()
+            motion[j.child] = motion[parent] * local
+            stack.append(j.child)
+    return motion

@@ -1,0 +1,137 @@
+// pybind11 module ode_sim.engine._core: the Stepper over raw ODE ids (integers) that
+// engine/compiled.py takes from the PyODE objects PhysicsWorld built.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <tuple>
+
+#include "stepper.h"
+
+namespace py = pybind11;
+using ode_sim::ActiveJoint;
+using ode_sim::Stepper;
+using ode_sim::Surface;
+
+namespace {
+
+template <typename T>
+T as(uintptr_t v) {
+  return reinterpret_cast<T>(v);
+}
+
+template <typename T>
+uintptr_t num(T p) {
+  return reinterpret_cast<uintptr_t>(p);
+}
+
+std::vector<dBodyID> bodies(const std::vector<uintptr_t>& ids) {
+  std::vector<dBodyID> out;
+  out.reserve(ids.size());
+  for (auto v : ids) out.push_back(as<dBodyID>(v));
+  return out;
+}
+
+using JointTuple = std::tuple<uintptr_t, bool, std::optional<double>, double, double,
+                              std::optional<double>, double>;
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "ode_sim's compiled step loop on libode (see engine/core/stepper.h)";
+  m.def("body_world", [](uintptr_t b) { return num(dBodyGetWorld(as<dBodyID>(b))); });
+  m.def("geom_body", [](uintptr_t g) { return num(dGeomGetBody(as<dGeomID>(g))); });
+  m.def("body_joint", [](uintptr_t b, int i) { return num(dBodyGetJoint(as<dBodyID>(b), i)); });
+  // ODE's quickStep reorders constraints with its one global random generator: two worlds
+  // compared step by step must each start from the same seed
+  m.def("set_random_seed", [](unsigned long seed) { dRandSetSeed(seed); });
+  m.def("ode_config", []() { return std::string(dGetConfiguration()); });
+
+  py::class_<Stepper>(m, "Stepper")
+      .def(py::init([](uintptr_t world, uintptr_t static_space) {
+        return new Stepper(as<dWorldID>(world), as<dSpaceID>(static_space));
+      }))
+      .def("set_step", &Stepper::setStep, py::arg("dt"), py::arg("use_step"),
+           py::arg("max_contacts"))
+      .def("add_geom",
+           [](Stepper& s, uintptr_t g, uintptr_t body, double mu1, double mu2, double kp, double kd,
+              std::optional<std::tuple<double, double, double>> fdir, double bounce,
+              double bounce_vel) {
+             Surface su{mu1, mu2, kp, kd, false, {0, 0, 0}, bounce, bounce_vel, as<dBodyID>(body)};
+             if (fdir) {
+               su.has_fdir = true;
+               su.fdir[0] = std::get<0>(*fdir);
+               su.fdir[1] = std::get<1>(*fdir);
+               su.fdir[2] = std::get<2>(*fdir);
+             }
+             s.addGeom(as<dGeomID>(g), su);
+           })
+      .def("remove_geom", [](Stepper& s, uintptr_t g) { s.removeGeom(as<dGeomID>(g)); })
+      .def("add_space",
+           [](Stepper& s, uintptr_t sp, const std::vector<uintptr_t>& b, bool self_collide) {
+             s.addSpace(as<dSpaceID>(sp), bodies(b), self_collide);
+           })
+      .def("remove_space", [](Stepper& s, uintptr_t sp) { s.removeSpace(as<dSpaceID>(sp)); })
+      .def("rouse", [](Stepper& s, uintptr_t sp) { s.rouse(as<dSpaceID>(sp)); })
+      .def("awake", [](const Stepper& s, uintptr_t sp) { return s.awake(as<dSpaceID>(sp)); })
+      .def("set_joints",
+           [](Stepper& s, const std::vector<JointTuple>& joints) {
+             std::vector<ActiveJoint> out;
+             out.reserve(joints.size());
+             for (const auto& t : joints) {
+               ActiveJoint j{};
+               j.id = as<dJointID>(std::get<0>(t));
+               j.hinge = std::get<1>(t);
+               j.has_pos_cmd = std::get<2>(t).has_value();
+               j.pos_cmd = j.has_pos_cmd ? *std::get<2>(t) : 0.0;
+               j.effort_cmd = std::get<3>(t);
+               j.damping = std::get<4>(t);
+               j.vmax = std::get<5>(t).value_or(0.0);
+               j.fmax = std::get<6>(t);
+               out.push_back(j);
+             }
+             s.setJoints(out);
+           })
+      .def("applied",
+           [](const Stepper& s) {
+             std::vector<double> out;
+             for (const auto& j : s.joints()) out.push_back(j.applied);
+             return out;
+           })
+      .def("set_tracked",
+           [](Stepper& s, const std::vector<uintptr_t>& b) { s.setTracked(bodies(b)); })
+      .def("accels",
+           [](const Stepper& s) {
+             const auto& a = s.accels();
+             py::array_t<double> out({static_cast<py::ssize_t>(a.size() / 3), py::ssize_t{3}});
+             std::copy(a.begin(), a.end(), out.mutable_data());
+             return out;
+           })
+      .def(
+          "step",
+          [](Stepper& s, int n, int64_t steps) {
+            py::gil_scoped_release release;
+            s.step(n, steps);
+          },
+          py::arg("n"), py::arg("steps"))
+      .def("contacts", &Stepper::contacts)
+      .def("read_bodies", [](const Stepper&, const std::vector<uintptr_t>& ids) {
+        // one row per body: position (3), quaternion x y z w (4), linear (3), angular (3) velocity
+        py::array_t<double> out({static_cast<py::ssize_t>(ids.size()), py::ssize_t{13}});
+        double* o = out.mutable_data();
+        for (auto v : ids) {
+          dBodyID b = as<dBodyID>(v);
+          const dReal* p = dBodyGetPosition(b);
+          const dReal* q = dBodyGetQuaternion(b);
+          const dReal* l = dBodyGetLinearVel(b);
+          const dReal* a = dBodyGetAngularVel(b);
+          double row[13] = {p[0], p[1], p[2], q[1], q[2], q[3], q[0], l[0], l[1], l[2], a[0], a[1], a[2]};
+          std::copy(row, row + 13, o);
+          o += 13;
+        }
+        return out;
+      });
+}

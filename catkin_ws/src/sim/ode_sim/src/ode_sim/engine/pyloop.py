@@ -1,0 +1,138 @@
+"""The step loop on PyODE: collision with a Python near callback, contact joints, (quick)step,
+sleeping models. The reference the compiled core (compiled.py, core/) reproduces operation for
+operation; PhysicsWorld(core='python') uses it."""
+import numpy as np
+import ode
+
+
+class PythonLoop:
+    """PhysicsWorld's step loop in Python; keeps its state in the PhysicsWorld `pw`."""
+
+    joints_dirty = False
+    tracked_dirty = False
+
+    def __init__(self, pw):
+        self.pw = pw
+
+    # the compiled loop mirrors these changes; here the lists of pw are the state
+    def sync_step(self):
+        pass
+
+    def add_geom(self, geom, surf):
+        pass
+
+    def remove_geom(self, geom):
+        pass
+
+    def add_space(self, space, bodies, self_collide):
+        pass
+
+    def remove_space(self, space):
+        pass
+
+    def near(self, _arg, g1, g2):
+        pw = self.pw
+        if g1.isSpace() or g2.isSpace():
+            ode.collide2(g1, g2, None, self.near)
+            return
+        s1 = pw._surf.get(g1)
+        s2 = pw._surf.get(g2)
+        if s1 is None or s2 is None:
+            return
+        b1, b2 = s1[7], s2[7]
+        if b1 is b2:
+            return                      # one body, or two bodiless (static, welded) geoms
+        if b1 is not None and b2 is not None and ode.areConnected(b1, b2):
+            return
+        contacts = ode.collide(g1, g2)
+        if not contacts:
+            return
+        dt = pw.dt
+        kp = 1.0 / (1.0 / s1[2] + 1.0 / s2[2])
+        kd = s1[3] + s2[3]
+        denom = dt * kp + kd
+        erp = dt * kp / denom
+        cfm = 1.0 / denom
+        mu1 = min(s1[0], s2[0])
+        mu2 = min(s1[1], s2[1])
+        fdir = s1[4] or s2[4]
+        bounce = max(s1[5], s2[5])
+        mode = ode.ContactSoftERP | ode.ContactSoftCFM | ode.ContactApprox1 | ode.ContactMu2
+        if fdir is not None:
+            mode |= ode.ContactFDir1
+        if bounce > 0:
+            mode |= ode.ContactBounce
+        world = pw.world
+        group = pw.contact_group
+        for c in contacts[:pw.max_contacts]:
+            c.setMode(mode)
+            c.setMu(mu1 if mu1 < 1e30 else ode.Infinity)
+            c.setMu2(mu2 if mu2 < 1e30 else ode.Infinity)
+            c.setSoftERP(erp)
+            c.setSoftCFM(cfm)
+            if fdir is not None:
+                body = b1 if s1[4] else b2
+                d = body.vectorToWorld(fdir) if body is not None else fdir
+                c.setFDir1(d)
+            if bounce > 0:
+                c.setBounce(bounce)
+                c.setBounceVel(min(s1[6], s2[6]))
+            ode.ContactJoint(world, group, c).attach(b1, b2)
+        pw._contacts += 1
+
+    def sort_sleepers(self):
+        """Models whose bodies all sleep stop colliding with the static world (and back)."""
+        pw = self.pw
+        for sp in list(pw._awake):
+            if not any(b.isEnabled() for b in pw._space_bodies[sp]):
+                pw._awake.remove(sp)
+                pw._dormant.append(sp)
+        for sp in list(pw._dormant):
+            if any(b.isEnabled() for b in pw._space_bodies[sp]):
+                self.rouse(sp)
+
+    def rouse(self, sp):
+        pw = self.pw
+        if sp in pw._dormant:
+            pw._dormant.remove(sp)
+            pw._awake.append(sp)
+            for b in pw._space_bodies[sp]:
+                b.enable()
+
+    def step(self, n):
+        pw = self.pw
+        dt = pw.dt
+        static = pw.static_space
+        near = self.near
+        for k in range(n):
+            for sj in pw._active:
+                sj.pre_step(dt)
+            awake = pw._awake
+            for i, sp in enumerate(awake):
+                ode.collide2(sp, static, None, near)        # model vs the static world
+                for other in awake[i + 1:]:
+                    ode.collide2(sp, other, None, near)     # models vs each other
+                for other in pw._dormant:
+                    before = pw._contacts
+                    ode.collide2(sp, other, None, near)     # a touch wakes the sleeper
+                    if pw._contacts != before:
+                        pw._wake.append(other)
+            if pw._wake:
+                for sp in pw._wake:
+                    if sp in pw._dormant:
+                        self.rouse(sp)
+                        ode.collide2(sp, static, None, near)
+                pw._wake = []
+            for sp in pw._self_collide:
+                sp.collide(None, near)
+            if pw.use_step:
+                pw.world.step(dt)
+            else:
+                pw.world.quickStep(dt)
+            pw.contact_group.empty()
+            for link in pw._tracked:
+                v = np.array(link.body.getLinearVel())
+                link.accel = (v - link.prev_vel) / dt
+                link.prev_vel = v
+            if (pw.steps + k + 1) % 100 == 0:
+                self.sort_sleepers()

@@ -1,0 +1,85 @@
+"""The one conversion module between ROS messages and engine / description types.
+
+Engine and description code work with ode_sim.description.transforms.Pose (p: xyz, q: xyzw as
+ROS orders it), numpy 3-vectors and plain floats; everything that builds or reads a message
+field goes through the functions here."""
+import numpy as np
+from geometry_msgs.msg import Pose as PoseMsg, TransformStamped, Twist, Vector3
+
+from ode_sim.description.transforms import Pose
+
+
+def pose_msg(pose):
+    """A new geometry_msgs/Pose from a Pose."""
+    m = PoseMsg()
+    fill_pose(m, pose)
+    return m
+
+
+def fill_pose(msg_pose, pose):
+    """Write a Pose into a geometry_msgs/Pose (or any object with position / orientation)."""
+    msg_pose.position.x, msg_pose.position.y, msg_pose.position.z = (float(v) for v in pose.p)
+    q = msg_pose.orientation
+    q.x, q.y, q.z, q.w = (float(v) for v in pose.q)
+
+
+def fill_vector(msg_vec, v):
+    msg_vec.x, msg_vec.y, msg_vec.z = (float(x) for x in v)
+
+
+def vector(msg_vec):
+    """geometry_msgs/Vector3 or Point -> numpy 3-vector."""
+    return np.array((msg_vec.x, msg_vec.y, msg_vec.z), dtype=float)
+
+
+def pose_from_msg(msg_pose):
+    """geometry_msgs/Pose -> Pose; an all-zero quaternion (an unset field) means identity, as
+    gazebo_ros reads requests."""
+    p = msg_pose.position
+    o = msg_pose.orientation
+    q = (o.x, o.y, o.z, o.w)
+    if q == (0.0, 0.0, 0.0, 0.0):
+        q = (0.0, 0.0, 0.0, 1.0)
+    return Pose((p.x, p.y, p.z), q)
+
+
+def twist_msg(lin, ang):
+    t = Twist()
+    t.linear = Vector3(*[float(v) for v in lin])
+    t.angular = Vector3(*[float(v) for v in ang])
+    return t
+
+
+def transform_msg(stamp, parent, child, pose):
+    """geometry_msgs/TransformStamped parent -> child at `pose`."""
+    t = TransformStamped()
+    t.header.stamp = stamp
+    t.header.frame_id = parent
+    t.child_frame_id = child
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = \
+        (float(v) for v in pose.p)
+    r = t.transform.rotation
+    r.x, r.y, r.z, r.w = (float(v) for v in pose.q)
+    return t
+
+
+def fill_laserscan(msg, model, ranges, intensities, stamp=None, frame=None):
+    """Fill a sensor_msgs/LaserScan (or any object with its fields; None: a new LaserScan)
+    from an engine LaserModel the way gazebo_ros_laser does. Returns the message."""
+    if msg is None:
+        from sensor_msgs.msg import LaserScan
+        msg = LaserScan()
+    if stamp is not None:
+        msg.header.stamp = stamp
+    if frame is not None:
+        msg.header.frame_id = frame
+    msg.angle_min = float(model.min_angle)
+    msg.angle_max = float(model.max_angle)
+    msg.angle_increment = float(model.angle_increment)
+    msg.time_increment = 0.0
+    msg.scan_time = 0.0
+    msg.range_min = float(model.range_min)
+    msg.range_max = float(model.range_max)
+    msg.ranges = np.asarray(ranges, dtype=float).tolist()
+    msg.intensities = np.asarray(intensities, dtype=float).tolist()
+    return msg

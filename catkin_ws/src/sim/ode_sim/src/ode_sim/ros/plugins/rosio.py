@@ -1,0 +1,112 @@
+"""The plugins' ROS endpoints and wall clock, injected through PluginContext (`ctx.io`,
+`ctx.wall`): the node passes RosIO() and WallClock(); unit tests without a master get the
+defaults MemoryIO() (publishers keep what they publish, no subscribers or services) and may
+pass a FakeClock so waits cost no wall time."""
+import time
+
+import rospy
+
+# Outgoing queue of the sensor publishers (laser, IMU, odometry, p3d). rospy hands each message
+# to a sender thread per subscriber and drops the oldest when its queue is full; at many times
+# real time a queue of 1 lost messages whenever that thread waited for the GIL. With this
+# queue every message reaches a subscriber that keeps up (bench/sim_rtf counts the stamps).
+SENSOR_QUEUE = 100
+
+
+class MemoryPublisher:
+    """Stands in for rospy.Publisher in MemoryIO: `sent` holds the messages, `connections` is
+    what get_num_connections() reports (tests set it)."""
+
+    DEFAULT_CONNECTIONS = 1
+
+    def __init__(self, name, data_class=None, queue_size=None, latch=False):
+        self.name = name
+        self.data_class = data_class
+        self.queue_size = queue_size
+        self.latch = latch
+        self.sent = []
+        self.connections = self.DEFAULT_CONNECTIONS
+        self.unregistered = False
+
+    def publish(self, msg):
+        if self.data_class is not None:
+            assert isinstance(msg, self.data_class), (self.name, type(msg))
+        self.sent.append(msg)
+
+    def get_num_connections(self):
+        return self.connections
+
+    def unregister(self):
+        self.unregistered = True
+
+
+class MemoryIO:
+    """No ROS: publishers in memory, no subscribers, services or parameters."""
+    live = False
+
+    def publisher(self, name, data_class, queue_size=1, latch=False):
+        return MemoryPublisher(name, data_class, queue_size, latch)
+
+    def subscriber(self, name, data_class, callback, queue_size=1, tcp_nodelay=False):
+        return None
+
+    def service(self, name, service_class, handler):
+        return None
+
+
+class RosIO:
+    """rospy endpoints of the running node."""
+    live = True
+
+    def publisher(self, name, data_class, queue_size=1, latch=False):
+        return rospy.Publisher(name, data_class, queue_size=queue_size, latch=latch)
+
+    def subscriber(self, name, data_class, callback, queue_size=1, tcp_nodelay=False):
+        return rospy.Subscriber(name, data_class, callback, queue_size=queue_size,
+                                tcp_nodelay=tcp_nodelay)
+
+    def service(self, name, service_class, handler):
+        return rospy.Service(name, service_class, handler)
+
+
+class WallClock:
+    """The wall clock for the few waits that are about wall time (the lockstep timeout)."""
+
+    def now(self):
+        return time.monotonic()
+
+    def wait(self, cond, timeout):
+        """cond.wait(timeout) on a held threading.Condition."""
+        cond.wait(timeout)
+
+
+class FakeClock:
+    """A wall clock for tests: wait() returns at once and advances the time by its timeout
+    (after letting other threads run), so a timeout of any length costs no wall time."""
+
+    def __init__(self, t=0.0):
+        self.t = t
+
+    def now(self):
+        return self.t
+
+    def wait(self, cond, timeout):
+        cond.wait(0.001)
+        self.t += timeout
+
+
+def close(*handles):
+    for h in handles:
+        if h is None:
+            continue
+        try:
+            if hasattr(h, 'unregister'):
+                h.unregister()
+            elif hasattr(h, 'shutdown'):
+                h.shutdown()
+        except Exception:       # shutting down anyway
+            pass
+
+
+def subscribed(pub):
+    return pub is not None and pub.get_num_connections() > 0
