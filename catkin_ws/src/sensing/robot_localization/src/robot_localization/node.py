@@ -21,7 +21,7 @@ from robot_localization.srv import (SetPose, SetPoseResponse, ToggleFilterProces
 
 LOG = {'debug': rospy.logdebug, 'info': rospy.loginfo, 'warn': rospy.logwarn,
        'error': rospy.logerr, 'fatal': rospy.logfatal}
-FUTURE_TOLERANCE = 0.5   # s
+FUTURE_TOLERANCE = 5.0   # s: a clock mix-up (wall vs sim time), not the lag of /clock under load
 
 
 class EkfNode:
