@@ -20,6 +20,7 @@ from amcl.sensors import angle_diff
 
 BASE, ODOM, MODEL = 'base_footprint', 'odom', 'robot'
 CONV_XY, CONV_YAW = 0.05, 0.05
+HOLD_S = 0.5              # s the error must stay within tolerance to count as converged
 
 
 def load_map(path):
@@ -111,25 +112,32 @@ def run(bag_path, map_path, overrides, seed=1, quiet=False, t_end=None, truth_od
         pose = compose(est, op)
         e = (float(np.hypot(*(pose[:2] - gt[:2]))), abs(float(angle_diff(pose[2], gt[2]))))
         trace.append((ts - t_start, e[0], e[1], res.stats.get('particles', 0) if res.updated else -1))
-        if e[0] < CONV_XY and e[1] < CONV_YAW:
-            if converged is None:
-                converged = ts - t_start
-        else:
-            converged = None
-        if converged is not None:
-            errs.append(e)
     period = float(np.median(np.diff([s.header.stamp.to_sec() for s in scans])))
+    # converged: the first scan from which the error stays within CONV_XY / CONV_YAW for HOLD_S
+    tr = np.array([row[:3] for row in trace])
+    ok = (tr[:, 1] < CONV_XY) & (tr[:, 2] < CONV_YAW)
+    converged = None
+    for k in range(len(tr)):
+        window = tr[:, 0] <= tr[k, 0] + HOLD_S
+        window[:k] = False
+        if ok[window].all() and tr[window, 0].max() >= tr[k, 0] + HOLD_S - 0.5:
+            converged = float(tr[k, 0])
+            break
+    after = tr[tr[:, 0] >= converged] if converged is not None else tr[:0]
     cpu = np.array(costs) if costs else np.array([np.nan])
     out = {
-        'converge_s': None if converged is None else round(float(converged), 2),
-        'rms_xy': float(np.sqrt(np.mean([e[0] ** 2 for e in errs]))) if errs else float('nan'),
-        'rms_yaw': float(np.sqrt(np.mean([e[1] ** 2 for e in errs]))) if errs else float('nan'),
-        'cpu_ms': 1000 * float(np.mean(costs)) if costs else float('nan'),
-        'cpu_max_ms': 1000 * float(np.max(costs)) if costs else float('nan'),
-        'scan_period_s': period,
+        'converge_s': None if converged is None else round(converged, 2),
+        'rms_xy': round(float(np.sqrt(np.mean(after[:, 1] ** 2))), 4) if len(after) else None,
+        'rms_yaw': round(float(np.sqrt(np.mean(after[:, 2] ** 2))), 4) if len(after) else None,
+        'max_xy': round(float(after[:, 1].max()), 4) if len(after) else None,
+        'max_yaw': round(float(after[:, 2].max()), 4) if len(after) else None,
+        'outside_tolerance': round(float(np.mean(~ok[tr[:, 0] >= converged])), 4) if len(after) else None,
+        'cpu_ms_per_update': round(1000 * float(np.mean(cpu)), 2),
+        'cpu_ms_max': round(1000 * float(np.max(cpu)), 2),
+        'scan_period_s': round(period, 4),
         'cpu_per_scan_period': round(float(np.mean(cpu)) / period, 4),
         'updates': len(costs),
-        'drive_s': float(min(scans[-1].header.stamp.to_sec() - t_start, t_end or 1e9)),
+        'drive_s': round(float(min(scans[-1].header.stamp.to_sec() - t_start, t_end or 1e9)), 1),
     }
     if not quiet:
         for row in trace[::3]:
