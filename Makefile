@@ -1,6 +1,6 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full test-stress demo bench clean
+.PHONY: setup build test test-full test-stress demo demo-lab2 bench clean
 REPEAT ?= 1
 
 setup:
@@ -19,8 +19,13 @@ test-full: setup
 test-stress: setup
 	bash scripts/stress.sh --repeat $(REPEAT)
 
+# the main demo: the space scanner maps the office, then navigates on its map
 demo: setup
 	bash scripts/demo.sh
+
+# the previous demo: the lab-2 reference graded on turtlesim
+demo-lab2: setup
+	bash scripts/demo_lab2.sh
 
 bench: setup
 	bash scripts/bench.sh

@@ -1,0 +1,278 @@
+"""The project's main demo (make demo): the space scanner maps the office on its own, then
+navigates on the map it made.
+
+1. explore.launch sim:=true — gmapping + move_base + explore_lite's frontier exploration —
+   until no frontier is left (or the simulated-time budget ends); ground truth and the SLAM
+   pose are recorded all along.
+2. `rosrun map_server map_saver -f OUT/office_map` saves the map; OUT/office_map_path.png shows
+   the driven trajectory over it.
+3. navigation.launch sim:=true map_file:=OUT/office_map.yaml — AMCL + move_base — takes the
+   robot to a set of goals in every room.
+4. A summary table: map quality against the office's ground-truth map, ATE of SLAM and AMCL,
+   goals reached and their times (all simulated time).
+Headless unless DISPLAY is set (then RViz shows each phase)."""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+
+from course_testing import Proc, RosCore
+from space_scanner_bringup import metrics
+
+GOALS = [   # (x, y) in the office: middle room, the corridor, left room, right room, back home
+    (1.0, -1.0), (0.0, 3.0), (-3.5, -2.5), (3.5, -2.5), (0.0, 0.0)]
+
+
+class Recorder:
+    """Ground truth (the simulator's model state of `robot`) and the estimated pose (TF
+    map -> base_footprint), both stamped with simulated time."""
+
+    def __init__(self):
+        import rospy
+        import tf2_ros
+        from gazebo_msgs.msg import ModelStates
+        self.rospy = rospy
+        self.lock = threading.Lock()
+        self.truth, self.estimate = [], []
+        self.buf = tf2_ros.Buffer()
+        self.listener = tf2_ros.TransformListener(self.buf)
+        self.sub = rospy.Subscriber('/gazebo/model_states', ModelStates, self.on_states, queue_size=1)
+        self.last = -1.0
+        self.running = True
+        self.thread = threading.Thread(target=self.poll_tf, daemon=True)
+        self.thread.start()
+
+    def on_states(self, msg):
+        t = self.rospy.get_time()
+        if 'robot' not in msg.name or t - self.last < 0.1:
+            return
+        self.last = t
+        p = msg.pose[msg.name.index('robot')].position
+        with self.lock:
+            self.truth.append((t, p.x, p.y))
+
+    def poll_tf(self):
+        import rospy
+        while self.running and not rospy.is_shutdown():
+            try:
+                tr = self.buf.lookup_transform('map', 'base_footprint', rospy.Time(0))
+                t = tr.header.stamp.to_sec()
+                with self.lock:
+                    if not self.estimate or t > self.estimate[-1][0]:
+                        self.estimate.append((t, tr.transform.translation.x, tr.transform.translation.y))
+            except Exception:   # no map yet: keep polling
+                pass
+            time.sleep(0.2)
+
+    def stop(self):
+        self.running = False
+        self.sub.unregister()
+
+    def take(self):
+        with self.lock:
+            out = list(self.truth), list(self.estimate)
+            self.truth, self.estimate = [], []
+        return out
+
+
+def wait_for(cond, timeout, what):
+    end = time.monotonic() + timeout
+    while not cond():
+        if time.monotonic() > end:
+            raise RuntimeError('timed out after %.0f s waiting for %s' % (timeout, what))
+        time.sleep(0.5)
+
+
+def sim_now():
+    import rospy
+    return rospy.get_time()
+
+
+def explore(out, env, display, sim_budget, say):
+    """Phase 1: returns (sim seconds, finished, truth, estimate)."""
+    log = os.path.join(out, 'explore.log')
+    args = ['roslaunch', 'space_scanner_bringup', 'explore.launch', 'sim:=true',
+            'rviz:=%s' % ('true' if display else 'false')]
+    launch = Proc(args, env=env, log=log)
+    try:
+        import rospy
+        wait_for(lambda: sim_now() > 0, 300, 'the simulation clock (see %s)' % log)
+        rec = Recorder()
+        t0 = sim_now()
+        say('exploring the office (simulated-time budget %.0f s)' % sim_budget)
+        finished = False
+        last_report = t0
+        while sim_now() - t0 < sim_budget:
+            text = launch.output()
+            if 'All frontiers traversed/tried out' in text:
+                finished = True
+                break
+            if not launch.alive():
+                raise RuntimeError('explore.launch stopped (see %s)' % log)
+            if sim_now() - last_report > 60:
+                last_report = sim_now()
+                say('  %.0f s of simulated time explored' % (last_report - t0))
+            time.sleep(1.0)
+        elapsed = sim_now() - t0
+        rec.stop()
+        truth, estimate = rec.take()
+        base = os.path.join(out, 'office_map')
+        r = subprocess.run(['rosrun', 'map_server', 'map_saver', '-f', base], env=env,
+                           capture_output=True, text=True, timeout=120)
+        if r.returncode != 0:
+            raise RuntimeError('map_saver failed: %s' % (r.stdout + r.stderr)[-500:])
+        return elapsed, finished, truth, estimate, base
+    finally:
+        launch.stop()
+
+
+def navigate(out, env, display, map_yaml, goal_budget, say):
+    """Phase 3: returns ([(goal, state, sim seconds, path length)], truth, estimate)."""
+    import actionlib
+    import rospy
+    from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
+    log = os.path.join(out, 'navigation.log')
+    args = ['roslaunch', 'space_scanner_bringup', 'navigation.launch', 'sim:=true',
+            'map_file:=%s' % map_yaml, 'rviz:=%s' % ('true' if display else 'false')]
+    launch = Proc(args, env=env, log=log)
+    results = []
+    try:
+        wait_for(lambda: sim_now() > 0, 300, 'the simulation clock (see %s)' % log)
+        rec = Recorder()
+        client = actionlib.SimpleActionClient('move_base', MoveBaseAction)
+        if not client.wait_for_server(rospy.Duration(300)):
+            raise RuntimeError('no move_base action server (see %s)' % log)
+        for gx, gy in GOALS:
+            goal = MoveBaseGoal()
+            goal.target_pose.header.frame_id = 'map'
+            goal.target_pose.header.stamp = rospy.Time.now()
+            goal.target_pose.pose.position.x, goal.target_pose.pose.position.y = gx, gy
+            goal.target_pose.pose.orientation.w = 1.0
+            t0 = sim_now()
+            with rec.lock:
+                start = len(rec.truth)
+            client.send_goal(goal)
+            while client.get_state() in (0, 1) and sim_now() - t0 < goal_budget:
+                if not launch.alive():
+                    raise RuntimeError('navigation.launch stopped (see %s)' % log)
+                time.sleep(0.5)
+            if client.get_state() in (0, 1):
+                client.cancel_goal()
+            state = client.get_state()
+            with rec.lock:
+                driven = metrics.path_length(rec.truth[start:])
+            results.append(((gx, gy), state, sim_now() - t0, driven))
+            say('  goal (%.1f, %.1f): %s in %.0f s, %.1f m driven' % (
+                gx, gy, 'reached' if state == 3 else 'NOT reached (state %d)' % state,
+                sim_now() - t0, driven))
+        rec.stop()
+        truth, estimate = rec.take()
+        return results, truth, estimate
+    finally:
+        launch.stop()
+
+
+def load_grid(yaml_path):
+    from map_server import load_map
+    g = load_map(yaml_path)
+    return np.asarray(g.data).reshape(g.height, g.width), g.resolution, tuple(g.origin[:2])
+
+
+def draw_path(map_yaml, truth, png):
+    """The saved map with the driven trajectory (ground truth) in red."""
+    from PIL import Image, ImageDraw
+    cells, res, origin = load_grid(map_yaml)
+    h, w = cells.shape
+    img = np.full((h, w, 3), 205, dtype=np.uint8)
+    img[cells == 0] = 254
+    img[cells == 100] = 0
+    im = Image.fromarray(img[::-1].copy())
+    d = ImageDraw.Draw(im)
+    pts = [((x - origin[0]) / res, h - (y - origin[1]) / res) for _t, x, y in truth]
+    if len(pts) > 1:
+        d.line(pts, fill=(220, 0, 0), width=2)
+    im = im.resize((w * 3, h * 3), Image.NEAREST)
+    im.save(png)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description='The space scanner maps the office, then navigates on its map.')
+    ap.add_argument('--out', default='build/demo', help='output folder (default build/demo)')
+    ap.add_argument('--explore-time', type=float, default=900.0,
+                    help='simulated-time budget of the exploration, s (default 900)')
+    ap.add_argument('--goal-time', type=float, default=120.0,
+                    help='simulated-time budget of each navigation goal, s (default 120)')
+    args = ap.parse_args(argv)
+    out = os.path.abspath(args.out)
+    os.makedirs(out, exist_ok=True)
+    display = os.environ.get('DISPLAY')
+
+    def say(text):
+        print('[demo] ' + text, flush=True)
+
+    core = RosCore(log_dir=os.path.join(out, 'ros_log'))
+    core.start()
+    env = dict(os.environ, **core.env)
+    os.environ.update(core.env)
+    try:
+        import rospy
+        rospy.set_param('/use_sim_time', True)
+        rospy.init_node('demo', anonymous=True, disable_signals=True)
+        t_wall = time.monotonic()
+        elapsed, finished, truth1, est1, base = explore(out, env, display, args.explore_time, say)
+        say('exploration %s after %.0f s of simulated time; map saved to %s.yaml/.pgm' % (
+            'finished' if finished else 'stopped at its budget', elapsed, base))
+        draw_path(base + '.yaml', truth1, base + '_path.png')
+        say('trajectory over the map: %s_path.png' % base)
+        import rospkg
+        truth_map = os.path.join(rospkg.RosPack().get_path('space_scanner_simulation'), 'maps', 'office.yaml')
+        quality = metrics.map_quality(load_grid(base + '.yaml'), load_grid(truth_map))
+        slam_ate = metrics.ate(est1, truth1) if est1 else (float('nan'), float('nan'))
+        rospy.set_param('/use_sim_time', True)
+        results, truth2, est2 = navigate(out, env, display, base + '.yaml', args.goal_time, say)
+        amcl_ate = metrics.ate(est2, truth2) if est2 else (float('nan'), float('nan'))
+        reached = sum(1 for r in results if r[1] == 3)
+        summary = {
+            'exploration_sim_s': round(elapsed, 1), 'exploration_finished': finished,
+            'explored_path_m': round(metrics.path_length(truth1), 2),
+            'map_walls_found': round(quality['walls_found'], 3),
+            'map_false_occupied': round(quality['false_occupied'], 3),
+            'map_known_area_m2': round(quality['known_area'], 1),
+            'slam_ate_rms_m': round(slam_ate[0], 3), 'slam_ate_max_m': round(slam_ate[1], 3),
+            'amcl_ate_rms_m': round(amcl_ate[0], 3), 'amcl_ate_max_m': round(amcl_ate[1], 3),
+            'goals_reached': reached, 'goals': len(results),
+            'goal_times_sim_s': [round(r[2], 1) for r in results],
+            'wall_s': round(time.monotonic() - t_wall, 1),
+        }
+        with open(os.path.join(out, 'summary.json'), 'w') as f:
+            json.dump(summary, f, indent=1)
+        rows = [
+            ('exploration', '%.0f s sim, %.1f m driven, %s' % (
+                elapsed, summary['explored_path_m'], 'all frontiers done' if finished else 'budget ended')),
+            ('map: walls found', '%.1f %% of the wall cells the robot saw (within one cell)' % (100 * quality['walls_found'])),
+            ('map: false occupied', '%.1f %% of the occupied cells' % (100 * quality['false_occupied'])),
+            ('map: known floor', '%.1f m²' % quality['known_area']),
+            ('SLAM ATE', 'RMS %.3f m, max %.3f m' % slam_ate),
+            ('AMCL ATE', 'RMS %.3f m, max %.3f m' % amcl_ate),
+            ('goals reached', '%d of %d; times %s s sim' % (reached, len(results), summary['goal_times_sim_s'])),
+            ('wall time', '%.0f s' % summary['wall_s']),
+        ]
+        print('\n=== main demo summary (%s)' % out)
+        for k, v in rows:
+            print('%-22s %s' % (k, v))
+        return 0 if finished and reached == len(results) else 1
+    except (RuntimeError, OSError) as e:
+        say('FAILED: %s' % e)
+        return 1
+    finally:
+        core.stop()
+
+
+if __name__ == '__main__':
+    sys.exit(main())
