@@ -2,7 +2,7 @@
 // proposal) on the same scans and odometry as our core. Reads the text dump written by
 // bench/slam/run --mrpt (header: beams angle_min angle_increment max_range laser_x laser_y;
 // then per scan: stamp odom_x odom_y odom_yaw ranges...), writes "stamp x y yaw" of the
-// current best base pose after every scan, and the wall time of the processing on stderr.
+// current best base pose after every scan, and the wall and CPU time of the processing on stderr.
 #include <mrpt/config/CConfigFileMemory.h>
 #include <mrpt/obs/CActionCollection.h>
 #include <mrpt/obs/CActionRobotMovement2D.h>
@@ -13,6 +13,7 @@
 #include <mrpt/slam/CMetricMapBuilderRBPF.h>
 
 #include <chrono>
+#include <ctime>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
   std::vector<float> ranges(beams);
   bool first = true;
   mrpt::poses::CPose2D last;
-  double busy = 0.0;
+  double busy = 0.0, cpu = 0.0;
   double stamp, ox, oy, oth;
   mrpt::obs::CActionRobotMovement2D::TMotionModelOptions motion;
   motion.modelSelection = mrpt::obs::CActionRobotMovement2D::mmGaussian;
@@ -49,6 +50,7 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < beams; ++i) in >> ranges[i];
     mrpt::poses::CPose2D odom(ox, oy, oth);
     auto t0 = std::chrono::steady_clock::now();
+    std::clock_t c0 = std::clock();
     auto scan = mrpt::obs::CObservation2DRangeScan::Create();
     scan->aperture = static_cast<float>(angle_inc * (beams - 1));
     scan->rightToLeft = true;
@@ -69,11 +71,12 @@ int main(int argc, char** argv) {
     acts.insert(act);
     builder.processActionObservation(acts, sf);
     busy += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    cpu += static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     last = odom;
     first = false;
     auto est = builder.getCurrentPoseEstimation()->getMeanVal();
     std::cout << stamp << ' ' << est.x() << ' ' << est.y() << ' ' << est.yaw() << '\n';
   }
-  std::cerr << "mrpt_rbpf: processing time " << busy << " s\n";
+  std::cerr << "mrpt_rbpf: processing time " << busy << " s, cpu " << cpu << " s\n";
   return 0;
 }

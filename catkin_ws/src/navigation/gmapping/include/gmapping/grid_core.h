@@ -27,6 +27,8 @@ typedef struct {
   int beams;              // number of readings
   const double* ranges;   // [m]
   const double* angles;   // [rad] in the laser frame
+  const double* cos_a;    // cos / sin of the angles (precomputed once per scan)
+  const double* sin_a;
   double max_range;       // readings beyond (or 0 / NaN) are dropped
   double max_urange;      // readings are clipped to this (clipped ones mark free space only)
 } GmScan;

@@ -13,12 +13,12 @@ struct CellRef {
   int i;
   inline bool inside(int cx, int cy) const { return cx >= 0 && cy >= 0 && cx < g->w && cy < g->h; }
   inline long index(int cx, int cy) const { return (static_cast<long>(i) * g->h + cy) * g->w + cx; }
-  // fullness: hits / visits; -1 when unknown or outside
-  inline double fullness(int cx, int cy) const {
-    if (!inside(cx, cy)) return -1.0;
+  // fullness hits / visits above threshold (unknown and outside cells are not full)
+  inline bool full(int cx, int cy, double threshold) const {
+    if (!inside(cx, cy)) return false;
     long k = index(cx, cy);
     uint16_t v = g->visits[k];
-    return v ? static_cast<double>(g->hits[k]) / v : -1.0;
+    return v && g->hits[k] > threshold * v;
   }
 };
 
@@ -37,7 +37,7 @@ double bestMu2(const CellRef& ref, double hx, double hy, const GmMatcherParams* 
   for (int xx = -p->kernel; xx <= p->kernel; ++xx) {
     for (int yy = -p->kernel; yy <= p->kernel; ++yy) {
       int cx = ihx + xx, cy = ihy + yy;
-      if (ref.fullness(cx, cy) > p->fullness) {
+      if (ref.full(cx, cy, p->fullness)) {
         long k = ref.index(cx, cy);
         double mx = g->ox + cx * g->delta + g->mx[k] - hx, my = g->oy + cy * g->delta + g->my[k] - hy;
         double mu2 = mx * mx + my * my;
@@ -50,11 +50,12 @@ double bestMu2(const CellRef& ref, double hx, double hy, const GmMatcherParams* 
 
 template <typename F>
 void forEachBeam(const double* pose, const GmScan* scan, const GmMatcherParams* p, F f) {
+  const double ct = std::cos(pose[2]), st = std::sin(pose[2]);
   for (int b = 0; b < scan->beams; b += p->lskip + 1) {
     double r = scan->ranges[b];
     if (!(r > 0.0) || r > scan->max_urange || std::isnan(r)) continue;
-    double a = pose[2] + scan->angles[b];
-    double c = std::cos(a), s = std::sin(a);
+    double c = ct * scan->cos_a[b] - st * scan->sin_a[b];
+    double s = st * scan->cos_a[b] + ct * scan->sin_a[b];
     f(pose[0] + r * c, pose[1] + r * s);
   }
 }
@@ -67,13 +68,14 @@ extern "C" int gm_integrate(GmGrids* g, const double* poses, const GmScan* scan)
     const double* pose = poses + 3 * i;
     CellRef ref{g, i};
     int x0 = cellOf(pose[0], g->ox, g->delta), y0 = cellOf(pose[1], g->oy, g->delta);
+    const double ct = std::cos(pose[2]), st = std::sin(pose[2]);
     for (int b = 0; b < scan->beams; ++b) {
       double r = scan->ranges[b];
       if (!(r > 0.0) || r > scan->max_range || std::isnan(r)) continue;
       bool cropped = false;
       if (r > scan->max_urange) { r = scan->max_urange; cropped = true; }
-      double a = pose[2] + scan->angles[b];
-      double ex = pose[0] + r * std::cos(a), ey = pose[1] + r * std::sin(a);
+      double ex = pose[0] + r * (ct * scan->cos_a[b] - st * scan->sin_a[b]);
+      double ey = pose[1] + r * (st * scan->cos_a[b] + ct * scan->sin_a[b]);
       int x1 = cellOf(ex, g->ox, g->delta), y1 = cellOf(ey, g->oy, g->delta);
       if (!ref.inside(x1, y1) || !ref.inside(x0, y0)) { status = -1; continue; }
       // Bresenham from the laser cell to the endpoint cell: free cells before the endpoint
@@ -138,7 +140,7 @@ extern "C" void gm_optimize(const GmGrids* g, const double* poses, const GmScan*
     double ldelta = p->lstep, adelta = p->astep;
     int refinement = 0;
     do {
-      if (best_score >= current_score) {
+      if (best_score >= current_score) {  // no move improved: refine
         ++refinement;
         ldelta *= 0.5;
         adelta *= 0.5;

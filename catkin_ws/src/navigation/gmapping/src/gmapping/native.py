@@ -18,7 +18,7 @@ class GmGrids(ctypes.Structure):
 
 
 class GmScan(ctypes.Structure):
-    _fields_ = [('beams', ctypes.c_int), ('ranges', _d), ('angles', _d),
+    _fields_ = [('beams', ctypes.c_int), ('ranges', _d), ('angles', _d), ('cos_a', _d), ('sin_a', _d),
                 ('max_range', ctypes.c_double), ('max_urange', ctypes.c_double)]
 
 
@@ -108,7 +108,9 @@ class Scan(object):
     def __init__(self, ranges, angles, max_range, max_urange):
         self.ranges = np.ascontiguousarray(ranges, dtype=np.float64)
         self.angles = np.ascontiguousarray(angles, dtype=np.float64)
-        self.c = GmScan(len(self.ranges), _dptr(self.ranges), _dptr(self.angles), max_range, max_urange)
+        self.cos_a, self.sin_a = np.cos(self.angles), np.sin(self.angles)
+        self.c = GmScan(len(self.ranges), _dptr(self.ranges), _dptr(self.angles), _dptr(self.cos_a),
+                        _dptr(self.sin_a), max_range, max_urange)
 
 
 def integrate(grids, poses, scan):

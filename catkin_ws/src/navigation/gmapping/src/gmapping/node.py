@@ -16,6 +16,7 @@ from map_server.conversions import NumpyGetMap, NumpyGetMapResponse, NumpyOccupa
 
 INT_PARAMS = ('particles', 'kernelSize', 'iterations', 'lskip', 'throttle_scans')
 STR_PARAMS = ('base_frame', 'map_frame', 'odom_frame')
+NO_SCAN_WARN = 5.0      # s without a scan before the watchdog warns
 
 
 def read_params():
@@ -56,6 +57,8 @@ class SlamGMapping(object):
         self.map = None
         self.last_map_update = None
         self.scan_count = 0
+        self.last_scan_time = None          # watchdog: "no scan for N s"
+        self.start_time = rospy.get_time()
         self.beams = None
         self.upside_down = False
         self.max_range = self.max_urange = None
@@ -65,9 +68,19 @@ class SlamGMapping(object):
             self.tf_thread = threading.Thread(target=self.publish_loop, daemon=True)
             self.tf_thread.start()
 
+    def check_scans(self):
+        """A throttled warning while no scan arrives (5 s of ROS time without one)."""
+        now = rospy.get_time()
+        last = self.last_scan_time if self.last_scan_time is not None else self.start_time
+        if now - last > NO_SCAN_WARN:
+            rospy.logwarn_throttle(NO_SCAN_WARN, 'slam_gmapping: no scan received for %.0f s on topic %s: check '
+                                   'the laser driver and the remapping of "scan"'
+                                   % (now - last, self.scan_sub.resolved_name))
+
     def publish_loop(self):
         rate = rospy.Rate(1.0 / self.p.transform_publish_period)
         while not rospy.is_shutdown():
+            self.check_scans()
             with self.lock:
                 pose = self.map_to_odom.copy()
             stamp = rospy.Time.now() + rospy.Duration(self.p.tf_delay)
@@ -113,6 +126,7 @@ class SlamGMapping(object):
         return True
 
     def laser_callback(self, scan):
+        self.last_scan_time = rospy.get_time()
         self.scan_count += 1
         if self.scan_count % self.p.throttle_scans:
             return
