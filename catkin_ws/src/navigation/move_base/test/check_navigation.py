@@ -45,6 +45,7 @@ class Latest:
     def cb(self, m):
         self.msg = m
         self.count += 1
+        self.longest = max(getattr(self, 'longest', 0), len(getattr(m, 'poses', [])))
 
 
 def wait_sim(pred, sim_seconds, what, wall_limit=240.0):
@@ -106,7 +107,9 @@ class NavigationOffice(unittest.TestCase):
         self.assertIsNotNone(self.local_costmap.msg, 'no /move_base/local_costmap/costmap')
         self.assertEqual(self.local_costmap.msg.header.frame_id, 'odom')
         self.assertIsNotNone(self.plan.msg, 'no plan on /move_base/NavfnROS/plan')
-        self.assertGreater(len(self.plan.msg.poses), 10)
+        # the first plan spans the 3 m (later replans may start near the goal)
+        self.assertGreater(self.plan.longest, 40, 'the longest plan had %d poses'
+                           % self.plan.longest)
         self.assertGreater(self.cmd.count, 20, 'move_base sent few commands on '
                            '/diffbot_controller/cmd_vel')
 
