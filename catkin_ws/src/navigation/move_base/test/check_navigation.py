@@ -122,6 +122,23 @@ class NavigationOffice(unittest.TestCase):
         self.assertEqual(self.client.get_goal_status_text(),
                          'Failed to find a valid plan. Even after executing recovery behaviors.')
 
+    def test_3_make_plan_and_clear_costmaps_services(self):
+        from nav_msgs.srv import GetPlan, GetPlanRequest
+        from std_srvs.srv import Empty
+        rospy.wait_for_service('/move_base/make_plan', 30)
+        req = GetPlanRequest()
+        req.goal.header.frame_id = 'map'
+        req.goal.pose.position.x, req.goal.pose.position.y = 0.0, -1.5   # back in room B
+        req.goal.pose.orientation.w = 1.0
+        plan = rospy.ServiceProxy('/move_base/make_plan', GetPlan)(req).plan
+        self.assertEqual(plan.header.frame_id, 'map')
+        self.assertGreater(len(plan.poses), 20, 'make_plan from the robot to (0, -1.5) is short')
+        last = plan.poses[-1].pose.position
+        self.assertAlmostEqual(last.x, 0.0, delta=0.05)
+        self.assertAlmostEqual(last.y, -1.5, delta=0.05)
+        rospy.wait_for_service('/move_base/clear_costmaps', 30)
+        rospy.ServiceProxy('/move_base/clear_costmaps', Empty)()
+
 
 if __name__ == '__main__':
     rostest.rosrun('move_base', 'check_navigation', NavigationOffice)
