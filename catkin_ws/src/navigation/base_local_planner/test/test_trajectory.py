@@ -87,3 +87,12 @@ def test_check_trajectory():
     tp.update_plan(g, [(0.5, 1.5), (2.5, 1.5)])
     assert tp.check_trajectory(0.5, 0.5, 0.0, 0, 0, 0, 0.0, 0.0, 0.5)
     assert not tp.check_trajectory(1.3, 1.525, 0.0, 0, 0, 0, 0.5, 0.0, 0.0)
+
+
+def test_native_wavefront_matches_the_python_one():
+    rng = np.random.default_rng(5)
+    g = LocalGrid((rng.random((40, 50)) < 0.2).astype(np.uint8) * 254, 0.05, 0.0, 0.0)
+    seeds = [(3, 3), (10, 30), (45, 38)]
+    a, ia = wavefront(g, seeds, native=True)
+    b, ib = wavefront(g, seeds, native=False)
+    assert ia == ib and np.array_equal(a, b)

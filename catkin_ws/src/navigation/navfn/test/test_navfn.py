@@ -68,3 +68,17 @@ def test_astar_gives_the_same_length():
     d = path_length(NavFn().plan(grid, (5, 20), (50, 20)))
     a = path_length(NavFn(astar=True).plan(grid, (5, 20), (50, 20)))
     assert abs(a - d) / d < 0.05
+
+
+def test_native_propagation_matches_the_python_one():
+    rng = np.random.default_rng(3)
+    grid = (rng.random((30, 40)) < 0.15).astype(np.uint8) * 254
+    grid[2, 2] = grid[25, 35] = 0
+    costs = navfn_costs(grid)
+    for astar in (False, True):
+        a = propagate(costs, (2, 2), (35, 25), astar, native=True)
+        b = propagate(costs, (2, 2), (35, 25), astar, native=False)
+        assert a[25, 35] == b[25, 35]
+    full_a = propagate(costs, (2, 2), None, native=True)
+    full_b = propagate(costs, (2, 2), None, native=False)
+    assert np.array_equal(full_a, full_b)

@@ -94,14 +94,19 @@ class GridGraph:
                                        shape=(nx * ny, nx * ny))
 
 
-def wavefront(grid, seeds, graph=None):
+def wavefront(grid, seeds, graph=None, native=True):
     """MapGrid::computeTargetDistance: 4-connected distance (cells) from the seed cells
     around obstacles (lethal, inscribed, unknown). Unreached cells get the impossible value
     nx * ny + 1 (obstacles: nx * ny)."""
-    graph = graph or GridGraph(grid)
-    ny, nx = graph.shape
+    ny, nx = grid.data.shape
     obstacle_value = nx * ny
     unreachable = nx * ny + 1
+    if native:
+        from . import native as _native
+        blocked = grid.data >= INSCRIBED_INFLATED_OBSTACLE
+        return _native.wavefront(blocked, (y * nx + x for x, y in seeds), obstacle_value,
+                                 unreachable), obstacle_value
+    graph = graph or GridGraph(grid)
     src = [y * nx + x for x, y in seeds if not graph.blocked[y, x]]
     if not src:
         d = np.full((ny, nx), unreachable, dtype=np.int64)
@@ -119,20 +124,22 @@ def plan_cells(grid, plan_xy):
     pts = np.asarray(plan_xy, dtype=float).reshape(-1, 2)
     if len(pts) == 0:
         return []
-    dense = [pts[0]]
-    for a, b in zip(pts[:-1], pts[1:]):
-        n = int(math.ceil(math.hypot(*(b - a)) / (grid.resolution * 0.5)))
-        for k in range(1, n + 1):
-            dense.append(a + (b - a) * k / n)
-    dense = np.array(dense)
+    if len(pts) > 1:
+        seg = pts[1:] - pts[:-1]
+        n = np.maximum(np.ceil(np.hypot(seg[:, 0], seg[:, 1]) / (grid.resolution * 0.5)),
+                       1).astype(int)
+        which = np.repeat(np.arange(len(seg)), n)
+        frac = (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n) + 1) / np.repeat(n, n)
+        dense = np.vstack([pts[:1], pts[which] + seg[which] * frac[:, None]])
+    else:
+        dense = pts
     fx, fy, inside = grid.cells(dense[:, 0], dense[:, 1])
-    out = []
-    seen = set()
-    for x, y, ok in zip(fx.tolist(), fy.tolist(), inside.tolist()):
-        if ok and (x, y) not in seen:
-            seen.add((x, y))
-            out.append((x, y))
-    return out
+    fx, fy = fx[inside], fy[inside]
+    if len(fx) == 0:
+        return []
+    keep = np.ones(len(fx), dtype=bool)
+    keep[1:] = (fx[1:] != fx[:-1]) | (fy[1:] != fy[:-1])
+    return list(zip(fx[keep].tolist(), fy[keep].tolist()))
 
 
 def footprint_outline(footprint, step):
@@ -178,11 +185,10 @@ class TrajectoryPlanner:
     def update_plan(self, grid, plan_xy):
         """The local costmap snapshot and the (local-frame) plan as (x, y) pairs."""
         self.grid = grid
-        graph = GridGraph(grid)
         cells = plan_cells(grid, plan_xy)
-        self.path_map, self.impossible = wavefront(grid, cells, graph)
+        self.path_map, self.impossible = wavefront(grid, cells)
         # the local goal: the last plan cell inside the local map
-        self.goal_map, _ = wavefront(grid, cells[-1:] if cells else [], graph)
+        self.goal_map, _ = wavefront(grid, cells[-1:] if cells else [])
         # cells from which the footprint may reach a lethal or unknown cell: only trajectories
         # through them need the exact footprint check
         hazard = (grid.data == LETHAL_OBSTACLE) | (grid.data == NO_INFORMATION)

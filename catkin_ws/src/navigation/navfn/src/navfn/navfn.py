@@ -33,11 +33,17 @@ def navfn_costs(costmap_data, allow_unknown=True):
     return out
 
 
-def propagate(costs, goal, start=None, astar=False, extra=None):
+def propagate(costs, goal, start=None, astar=False, extra=None, native=True):
     """Potential array (POT_HIGH where unreached) spreading from goal=(x, y) cell.
     Stops once start=(x, y) is settled, then settles `extra` more cells (default: enough for
     a clean gradient around the start). Returns the potential [ny, nx]."""
     ny, nx = costs.shape
+    if native:
+        from . import native as _native
+        return _native.propagate(costs, goal, start,
+                                 extra if extra is not None else 4 * (nx + ny),
+                                 COST_NEUTRAL if astar else 0.0,
+                                 start if start is not None else (0, 0))
     cost = costs.ravel().tolist()
     pot = [POT_HIGH] * (nx * ny)
     done = bytearray(nx * ny)
