@@ -5,7 +5,6 @@ costmaps and the plan are published; a goal inside a wall is aborted with the re
 the recoveries. All waits are on sim time with generous limits."""
 import math
 import os
-import sys
 import threading
 import unittest
 
@@ -18,8 +17,7 @@ from geometry_msgs.msg import PoseStamped, Twist
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from nav_msgs.msg import OccupancyGrid, Path
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import world_map  # noqa: E402
+from course_testing import world_map
 
 WORLD = os.path.join(os.path.dirname(os.path.abspath(__file__)),
                      '../../../space_scanner/space_scanner_simulation/worlds/office.world')

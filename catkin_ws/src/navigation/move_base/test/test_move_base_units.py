@@ -3,7 +3,6 @@ planner YAML read the way TrajectoryPlannerROS reads it, the test map of the off
 import math
 import os
 import subprocess
-import sys
 
 import pytest
 import yaml
@@ -16,8 +15,7 @@ from move_base.conversions import quaternion_valid
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DIPLOMA = os.path.join(HERE, 'config/diploma')
-sys.path.insert(0, HERE)
-import world_map  # noqa: E402
+from course_testing import world_map  # noqa: E402
 
 
 def test_registry_knows_the_original_names():

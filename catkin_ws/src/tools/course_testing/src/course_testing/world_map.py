@@ -1,4 +1,4 @@
-"""Test and bench helper: the occupancy grid of an SDF world (box, cylinder and sphere
+"""Test and bench helper shared by the navigation packages and the demo: the occupancy grid of an SDF world (box, cylinder and sphere
 collisions cut at the robot's height band), read from the world file and the model library
 (`model://` from ode_sim's models/ and GAZEBO_MODEL_PATH), no simulator code involved.
 
@@ -151,3 +151,49 @@ if __name__ == '__main__':
     for row in v[::-4, ::2]:
         print(''.join('#' if c else '.' for c in row))
     print(v.shape, ox, oy)
+
+
+def rasterize_slice(collisions, height, origin, size, resolution=0.05, supersample=4, free_box=None):
+    """The world cut by the horizontal plane at `height` (a lidar's scan plane) as a map_server
+    image: uint8 rows top = max y, 0 occupied, 254 free (inside free_box = (x0, y0, x1, y1)),
+    205 unknown. Each cell is occupied if any of supersample² sub-cells is inside a shape."""
+    w, h = int(round(size[0] / resolution)), int(round(size[1] / resolution))
+    n = supersample
+    X, Y = np.meshgrid(origin[0] + (np.arange(w * n) + 0.5) * resolution / n,
+                       origin[1] + (np.arange(h * n) + 0.5) * resolution / n)
+    occ = np.zeros(X.shape, dtype=bool)
+    for kind, p, dims in collisions:
+        dx, dy = X - p[0], Y - p[1]
+        if kind == 'box':
+            sx, sy, sz = dims
+            if not (p[2] - sz / 2 <= height <= p[2] + sz / 2):
+                continue
+            c, s = math.cos(p[5]), math.sin(p[5])
+            occ |= (np.abs(c * dx + s * dy) <= sx / 2) & (np.abs(-s * dx + c * dy) <= sy / 2)
+        elif kind == 'cylinder':
+            r, length = dims
+            if p[2] - length / 2 <= height <= p[2] + length / 2:
+                occ |= dx * dx + dy * dy <= r * r
+        else:
+            r = dims[0]
+            if abs(height - p[2]) < r:
+                occ |= dx * dx + dy * dy <= r * r - (height - p[2]) ** 2
+    occ = occ.reshape(h, n, w, n).any(axis=(1, 3))
+    img = np.full((h, w), 205, dtype=np.uint8)
+    if free_box is not None:
+        cx, cy = np.meshgrid(origin[0] + (np.arange(w) + 0.5) * resolution,
+                             origin[1] + (np.arange(h) + 0.5) * resolution)
+        img[(cx > free_box[0]) & (cx < free_box[2]) & (cy > free_box[1]) & (cy < free_box[3])] = 254
+    img[occ] = 0
+    return img[::-1]
+
+
+def write_map_files(img, base, origin, resolution, comment):
+    """base.pgm + base.yaml in map_server's format (trinary thresholds 0.65 / 0.196)."""
+    with open(base + '.pgm', 'wb') as f:
+        f.write(b'P5\n# %s\n%d %d\n255\n' % (comment.encode(), img.shape[1], img.shape[0]))
+        f.write(img.tobytes())
+    with open(base + '.yaml', 'w') as f:
+        f.write('image: %s.pgm\nresolution: %.3f\norigin: [%.3f, %.3f, 0.0]\nnegate: 0\n'
+                'occupied_thresh: 0.65\nfree_thresh: 0.196\n' % (
+                    os.path.basename(base), resolution, origin[0], origin[1]))
