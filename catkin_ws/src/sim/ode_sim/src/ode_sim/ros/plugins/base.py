@@ -169,7 +169,7 @@ class Plugin:
         return (prefix.strip('/') + '/' + name) if prefix.strip('/') else name
 
     def _tf_prefix(self):
-        if not rospy.core.is_initialized():
+        if not self.ctx.io.live:        # no ROS (MemoryIO): no parameter server
             return ''
         parts = [p for p in self.ns.split('/') if p]
         for i in range(len(parts), -1, -1):
