@@ -6,8 +6,10 @@ OK = '\u2714'
 FAIL = '\u2718'
 
 
-def format_report(lab, isu, criteria):
+def format_report(lab, isu, criteria, note=None):
     lines = ['%s, ISU %s (variant %s):' % (lab, isu, isu[-1])]
+    if note:
+        lines.append('(%s)' % note)
     for c in criteria:
         mark = OK if c.passed else FAIL
         lines.append('%s %s. %s / %s' % (mark, c.id, c.title_ru, c.title_en))
@@ -23,10 +25,13 @@ def format_report(lab, isu, criteria):
     return '\n'.join(lines)
 
 
-def write_junit(path, lab, isu, criteria, elapsed=0.0):
+def write_junit(path, lab, isu, criteria, elapsed=0.0, note=None):
     failures = sum(1 for c in criteria if not c.passed)
-    suite = ET.Element('testsuite', name='%s-%s' % (lab, isu), tests=str(len(criteria)),
-                       failures=str(failures), errors='0', time='%.1f' % elapsed)
+    suite = ET.Element('testsuite', name='%s-%s%s' % (lab, isu, '-self-check' if note else ''),
+                       tests=str(len(criteria)), failures=str(failures), errors='0', time='%.1f' % elapsed)
+    if note:
+        props = ET.SubElement(suite, 'properties')
+        ET.SubElement(props, 'property', name='self-check', value=note)
     for c in criteria:
         case = ET.SubElement(suite, 'testcase', classname='%s.variant%s' % (lab, isu[-1]),
                              name='%s_%s' % (c.id, re.sub(r'[^a-z0-9]+', '_', c.title_en.lower()).strip('_')[:60]))
