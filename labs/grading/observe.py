@@ -207,6 +207,7 @@ def launch_failure(log):
             lines = [l.strip() for l in f.read().splitlines() if l.strip()]
     except OSError:
         return 'roslaunch failed (no output)'
+    lines = [plain(l).strip() for l in lines]
     for key in ('RLException', 'ResourceNotFound', 'Resource not found', 'ERROR', 'Error', 'error'):
         for l in lines:
             if key in l:

@@ -25,6 +25,12 @@ def format_report(lab, isu, criteria, note=None):
     return '\n'.join(lines)
 
 
+def xml_text(text):
+    """Text XML 1.0 can carry: no terminal colour codes or control characters."""
+    text = re.sub(r'\x1b\[[0-9;]*[A-Za-z]|\x1b\][^\x07]*\x07', '', text or '')
+    return ''.join(ch for ch in text if ch >= ' ' or ch in '\t\n')
+
+
 def write_junit(path, lab, isu, criteria, elapsed=0.0, note=None):
     failures = sum(1 for c in criteria if not c.passed)
     suite = ET.Element('testsuite', name='%s-%s%s' % (lab, isu, '-self-check' if note else ''),
@@ -35,9 +41,9 @@ def write_junit(path, lab, isu, criteria, elapsed=0.0, note=None):
     for c in criteria:
         case = ET.SubElement(suite, 'testcase', classname='%s.variant%s' % (lab, isu[-1]),
                              name='%s_%s' % (c.id, re.sub(r'[^a-z0-9]+', '_', c.title_en.lower()).strip('_')[:60]))
-        text = '%s / %s' % (c.reason.get('en', ''), c.reason.get('ru', ''))
+        text = xml_text('%s / %s' % (c.reason.get('en', ''), c.reason.get('ru', '')))
         if not c.passed:
-            f = ET.SubElement(case, 'failure', message=c.reason.get('en', ''))
+            f = ET.SubElement(case, 'failure', message=xml_text(c.reason.get('en', '')))
             f.text = text
         else:
             ET.SubElement(case, 'system-out').text = text
