@@ -71,7 +71,7 @@ class Child:
                                    '(%d processes at once; a fork bomb?)' % n)
                 stop_tree(self.p, first=signal.SIGKILL, grace=2.0)
                 return
-            time.sleep(0.3)
+            time.sleep(0.5)
 
     def rc(self):
         return self.p.poll()
