@@ -66,7 +66,7 @@ def test_gradebook_has_every_row(graded):
     assert fg['status'] == 'failed' and fg['c0'].startswith('pass') and fg['c1'].startswith('FAIL'), fg
     assert by['423451']['status'] == 'error' and 'does not exist' in by['423451']['c0'], by['423451']
     assert by['12a451']['status'] == 'error' and 'ISU must be digits' in by['12a451']['c0'], by['12a451']
-    assert '[grade-class] done 4/4, running 0, left 0' in p.stdout, p.stdout
+    assert '[grade-class] done 5/5, running 0, left 0' in p.stdout, p.stdout
 
 
 def test_outputs_per_student(graded):
