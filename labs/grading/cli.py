@@ -1,11 +1,13 @@
-"""labs/grade LAB --isu ID [--repo PATH] [--junit FILE] [--timeout S]
+"""labs/grade LAB --isu ID [--repo PATH] [--junit FILE] [--timeout S] [--no-sandbox]
 
 Finds the lab's package in the student's repository, builds it in a fresh overlay workspace
 on top of the course workspace, runs the lab's rostest for the variant (last ISU digit),
 prints a per-criterion report (ru/en) and writes JUnit XML. Exit 0 only if all criteria pass.
 """
 import argparse
+import json
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -13,7 +15,7 @@ import time
 
 import course_testing
 
-from grading import lab1, lab2, lab3, lab4
+from grading import lab1, lab2, lab3, lab4, sandbox
 from grading.common import (LABS_DIR, Criterion, GradeError, parse_isu, read_report, reason)
 from grading.report import format_report, write_junit
 from grading.workspace import StepFailed, build_overlay, course_env, locate, run_group
@@ -39,11 +41,31 @@ def tail(path, n=5):
         return 'no log'
 
 
-def run_checker(lab, isu, env, work, timeout):
-    """Run the lab's rostest; return the checker's criteria (or None) and a log path."""
+def checker_crash(work):
+    """The exception line of a checker that failed with a Python traceback, or None."""
+    for d, _dirs, files in os.walk(os.path.join(work, 'ros_log')):
+        for f in files:
+            if f.endswith('-stdout.log'):
+                with open(os.path.join(d, f), errors='replace') as fh:
+                    text = fh.read()
+                if 'Traceback (most recent call last)' in text:
+                    errs = [l.strip() for l in text.splitlines()
+                            if re.match(r'^[A-Za-z_.]*(Error|Exception)\b.*:', l.strip())]
+                    return (errs[-1] if errs else 'a Python exception (see the rostest log)')[:250]
+    return None
+
+
+def run_checker(lab, isu, env, work, timeout, box=None):
+    """Run the lab's rostest; return the checker's criteria (or None) and a log path.
+    With a sandbox `box` the rostest (master and checker) runs in a network namespace of its
+    own, and the checker starts the student's nodes inside the sandbox."""
     mod = LAB_MODULES[lab]
     report = os.path.join(work, 'report.json')
     env = dict(env)
+    env['GRADING_REPORT'] = report
+    if box is not None:
+        env['GRADING_SANDBOX'] = box.to_json()
+        env.pop('DISPLAY', None)   # the grading's network namespace cannot reach the user's X server
     env['ROS_PACKAGE_PATH'] = env.get('ROS_PACKAGE_PATH', '') + ':' + os.path.join(LABS_DIR, lab, 'grader')
     env['PYTHONPATH'] = LABS_DIR + ':' + env.get('PYTHONPATH', '')
     env['ROS_LOG_DIR'] = os.path.join(work, 'ros_log')
@@ -54,25 +76,53 @@ def run_checker(lab, isu, env, work, timeout):
         env['QT_QPA_PLATFORM'] = 'offscreen'
     log = os.path.join(work, 'rostest.log')
     cmd = ['rostest', '--results-base-dir', os.path.join(work, 'results'),
-           mod.GRADER_PKG, lab + '.test', 'isu:=' + isu, 'report:=' + report,
-           'workdir:=' + work]
+           mod.GRADER_PKG, lab + '.test', 'isu:=' + isu, 'workdir:=' + work]
+    if box is not None:
+        cmd = sandbox.netns_prefix() + cmd
     rc, timed_out = run_group(cmd, timeout, env=env, cwd=work, log=log)
     crits = read_report(report) if os.path.exists(report) else None
     return crits, log, timed_out
 
 
-def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout):
-    """Returns the list of criteria (package criterion first)."""
+def save_logs(work, dest):
+    """Copy the grading's logs (build, rostest, the student's launch) into dest."""
+    os.makedirs(dest, exist_ok=True)
+    for d, _dirs, files in os.walk(work):
+        if (d + '/').startswith(os.path.join(work, 'ws') + '/'):
+            continue
+        for f in files:
+            if f.endswith('.log') or f.endswith('.xml'):
+                try:
+                    shutil.copy(os.path.join(d, f), os.path.join(dest, f))
+                except OSError:
+                    pass
+
+
+def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, hide=(), logs=None):
+    """Returns the list of criteria (package criterion first). `sandboxed`: the student's
+    build and nodes run in the grading sandbox (grading.sandbox); `hide`: more folders of the
+    course tree the sandbox must not see (other submissions)."""
     mod = LAB_MODULES[lab]
     pkg_c = package_criterion()
     work = tempfile.mkdtemp(prefix='grade-%s-%s-' % (lab, isu))
+    ws = os.path.join(work, 'ws')
+    box = None
+    if sandboxed:
+        box = sandbox.Sandbox(sandbox.new_uid(), ws, hide=[repo] + list(hide))
+        box.prepare_ws(ws)
     try:
         env = course_env()
         try:
             pkg_dir = locate(repo, mod.PACKAGE)
-            print('[grade] found %s in %s; building it in %s' % (mod.PACKAGE, pkg_dir, work), file=out, flush=True)
+            print('[grade] found %s in %s; building it in %s%s' % (mod.PACKAGE, pkg_dir, work,
+                  ' (sandboxed)' if box else ''), file=out, flush=True)
             t = time.monotonic()
-            run_env = build_overlay(pkg_dir, os.path.join(work, 'ws'), env, BUILD_TIMEOUT)
+            run_env = build_overlay(pkg_dir, ws, env, BUILD_TIMEOUT, box=box,
+                                    log=os.path.join(work, 'build.log'))
+            if box is not None:
+                # the checker keeps the course's environment; only the overlay's package path
+                box.student_env = run_env
+                run_env = dict(env, ROS_PACKAGE_PATH=os.path.join(ws, 'src') + ':' + env.get('ROS_PACKAGE_PATH', ''))
             pkg_c.set(True, reason('пакет %s собран за %.0f с' % (mod.PACKAGE, time.monotonic() - t),
                                    'package %s built in %.0f s' % (mod.PACKAGE, time.monotonic() - t)))
         except StepFailed as e:
@@ -80,16 +130,23 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout):
             return [pkg_c] + lab_criteria(mod, reason('не проверено: ' + e.reason['ru'],
                                                       'not checked: ' + e.reason['en']))
         print('[grade] running the %s checker (rostest, time limit %d s)' % (lab, timeout), file=out, flush=True)
-        crits, log, timed_out = run_checker(lab, isu, run_env, work, timeout)
+        crits, log, timed_out = run_checker(lab, isu, run_env, work, timeout, box=box)
         if crits is None:
-            why = ('the checker hit the %d s time limit' % timeout if timed_out
-                   else 'the checker produced no report')
-            why_ru = ('проверка не уложилась в %d с' % timeout if timed_out
-                      else 'проверка не выдала отчёт')
+            crash = checker_crash(work)
+            if timed_out:
+                why, why_ru = ('the checker hit the %d s time limit' % timeout, 'проверка не уложилась в %d с' % timeout)
+            elif crash:
+                why, why_ru = 'the checker failed: %s' % crash, 'ошибка проверяющей программы: %s' % crash
+            else:
+                why = 'tampering: the checker ended without writing its report (killed?)'
+                why_ru = 'tampering: проверка завершилась, не записав отчёт (её убили?)'
             last = tail(log)
             return [pkg_c] + lab_criteria(mod, reason('%s (%s)' % (why_ru, last), '%s (%s)' % (why, last)))
         return [pkg_c] + crits
     finally:
+        if logs:
+            save_logs(work, logs)
+        sandbox.release_ws(ws)
         if keep:
             print('[grade] work dir kept: %s' % work, file=out)
         else:
@@ -104,6 +161,12 @@ def main(argv=None):
     ap.add_argument('--junit', help='JUnit XML output (default: ./grade-LAB-ISU.xml)')
     ap.add_argument('--timeout', type=float, help='time limit of the checker run, s')
     ap.add_argument('--keep', action='store_true', help='keep the temporary work dir (logs)')
+    ap.add_argument('--no-sandbox', action='store_true',
+                    help='build and run your nodes without the grading sandbox (debugging)')
+    ap.add_argument('--json', help='also write the criteria as JSON to this file (labs/grade-class)')
+    ap.add_argument('--hide', action='append', default=[], help=argparse.SUPPRESS)
+    ap.add_argument('--logs', help=argparse.SUPPRESS)
+    ap.add_argument('--require-sandbox', action='store_true', help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     course_testing.become_subreaper()   # nodes orphaned by a crashed launch come back to us
     try:
@@ -116,8 +179,20 @@ def main(argv=None):
         if timeout <= 0:
             raise GradeError('--timeout must be positive, got %s' % args.timeout)
         junit = args.junit or 'grade-%s-%s.xml' % (args.lab, isu)
+        sandboxed, note = not args.no_sandbox, None
+        if sandboxed:
+            why = sandbox.probe()
+            if why:
+                if args.require_sandbox:
+                    raise GradeError('no grading sandbox can be made here (%s)' % why)
+                print('labs/grade: no sandbox can be made here (%s): grading without one, as a self-check' % why,
+                      file=sys.stderr, flush=True)
+                sandboxed, note = False, 'self-check: graded without a sandbox (%s)' % why
+        if args.no_sandbox:
+            note = 'self-check: graded with --no-sandbox'
         t0 = time.monotonic()
-        crits = grade(args.lab, isu, repo, timeout, keep=args.keep)
+        crits = grade(args.lab, isu, repo, timeout, keep=args.keep, sandboxed=sandboxed,
+                      hide=[os.path.abspath(h) for h in args.hide], logs=args.logs)
     except GradeError as e:
         print('labs/grade: error: %s' % e, file=sys.stderr)
         return 2
@@ -126,7 +201,11 @@ def main(argv=None):
         return 130
     finally:
         course_testing.reap_orphans()   # nothing of the student's run outlives the grader
-    print(format_report(args.lab, isu, crits))
-    write_junit(junit, args.lab, isu, crits, time.monotonic() - t0)
+    print(format_report(args.lab, isu, crits, note=note))
+    write_junit(junit, args.lab, isu, crits, time.monotonic() - t0, note=note)
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump({'lab': args.lab, 'isu': isu, 'sandboxed': sandboxed, 'note': note,
+                       'criteria': [c.to_dict() for c in crits]}, f, ensure_ascii=False, indent=1)
     print('[grade] JUnit report: %s' % os.path.abspath(junit))
     return 0 if all(c.passed for c in crits) else 1

@@ -357,3 +357,9 @@ def evaluate(obs):
         c['6'].set(True, reason('всё завершено за %.1f с (лимит %.0f с), путь черепахи 1 %.1f м' % (dur, RUN_LIMIT, path_length(p1)),
                                 'all done in %.1f s (limit %.0f s), turtle 1 drove %.1f m' % (dur, RUN_LIMIT, path_length(p1))))
     return [c[i] for i in '123456']
+
+
+def topic_owners(isu):
+    """{observed topic: the service only its rightful publisher (that namespace's turtlesim)
+    provides}: the checker fails every criterion as tampering when another node publishes it."""
+    return {ns + '/turtle1/pose': ns + '/spawn' for ns in namespaces(isu)}

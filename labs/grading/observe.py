@@ -5,6 +5,7 @@ wall seconds (time.monotonic) so that a stalled node cannot stall the clock.
 """
 import math
 import os
+import signal
 import subprocess
 import threading
 import time
@@ -42,10 +43,35 @@ class Child:
     """A student process in its own process group, output logged."""
 
     def __init__(self, cmd, log, env=None):
+        from grading import sandbox
         self.log = log
         self._out = open(log, 'wb')
+        env = dict(os.environ if env is None else env)
+        box = sandbox.Sandbox.from_env(env)
+        if box is not None:     # labs/grade asked for the student's processes to be sandboxed
+            cmd = box.wrap(cmd)
+            env = box.env(env)
         self.p = subprocess.Popen(cmd, stdout=self._out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                                   env=env, start_new_session=True)
+        self.killed_for = None
+        if box is not None:
+            ns = sandbox.pidns_of_child(self.p.pid)
+            sandbox.remember_pidns(ns)
+            if ns:
+                threading.Thread(target=self._watch, args=(ns, box.limits['procs']), daemon=True).start()
+
+    def _watch(self, ns, limit):
+        """Stop the sandbox when its processes reach `limit` (a fork bomb), so that it fails
+        its own run quickly and nothing else."""
+        from grading import sandbox
+        while self.p.poll() is None:
+            n = sandbox.count_procs(ns)
+            if n >= limit:
+                self.killed_for = ('stopped by the grader: the sandbox reached its process limit '
+                                   '(%d processes at once; a fork bomb?)' % n)
+                stop_tree(self.p, first=signal.SIGKILL, grace=2.0)
+                return
+            time.sleep(0.5)
 
     def rc(self):
         return self.p.poll()
@@ -156,7 +182,7 @@ class Lab1Observer:
                     break
                 time.sleep(0.2)
             end = time.monotonic()
-            procs = {n: {'rc': c.rc(), 'last': last_line(c.log) if c.rc() is not None else ''}
+            procs = {n: {'rc': c.rc(), 'last': (c.killed_for or last_line(c.log)) if c.rc() is not None else ''}
                      for n, c in children.items()}
         finally:
             for c in children.values():
@@ -181,6 +207,7 @@ def launch_failure(log):
             lines = [l.strip() for l in f.read().splitlines() if l.strip()]
     except OSError:
         return 'roslaunch failed (no output)'
+    lines = [plain(l).strip() for l in lines]
     for key in ('RLException', 'ResourceNotFound', 'Resource not found', 'ERROR', 'Error', 'error'):
         for l in lines:
             if key in l:
@@ -270,7 +297,9 @@ class Lab2Observer:
                 last = max([m.moved_at for m in motion.values() if m.moved_at] or [0.0])
                 if child.rc() is not None:
                     end_reason = 'launch_exited'
-                    if not seen[1] and not seen[2]:
+                    if child.killed_for:
+                        obs['launch_error'] = child.killed_for
+                    elif not seen[1] and not seen[2]:
                         obs['launch_error'] = launch_failure(log)
                     break
                 if now - start > self.run_limit:
@@ -303,6 +332,10 @@ def node_argv(master, node):
         import xmlrpc.client
         uri = master.lookupNode(node)
         code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/lab3_checker')
+        from grading.sandbox import host_pid
+        pid = host_pid(pid)     # a sandboxed node reports its pid in the sandbox's namespace
+        if pid is None:
+            return []
         with open('/proc/%d/cmdline' % pid, 'rb') as f:
             return [a.decode(errors='replace') for a in f.read().split(b'\0') if a]
     except Exception:   # node gone or not answering: not counted
@@ -436,7 +469,7 @@ class Lab3Observer:
                     time.sleep(lab3.RVIZ_SETTLE)   # RViz must still be running afterwards
                     break
                 if child.rc() is not None:
-                    res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log)).replace(self.pkg_dir.rstrip('/') + '/', '')
+                    res['error'] = 'roslaunch exited: %s' % plain(child.killed_for or launch_failure(log)).replace(self.pkg_dir.rstrip('/') + '/', '')
                     break
                 if now - start > self.launch_limit:
                     break
@@ -656,7 +689,7 @@ class Lab4Observer:
                 if running and have_sensors and res.get('robot_description') is not None and t0 is not None:
                     break
                 if child.rc() is not None:
-                    res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log)).replace(self.pkg_dir.rstrip('/') + '/', '')
+                    res['error'] = 'roslaunch exited: %s' % plain(child.killed_for or launch_failure(log)).replace(self.pkg_dir.rstrip('/') + '/', '')
                     break
                 if time.monotonic() - start > self.startup_limit:
                     break
@@ -673,7 +706,7 @@ class Lab4Observer:
                         if self.clock - t0 >= lab4.RUN_SIM:
                             break
                     if child.rc() is not None:
-                        res['error'] = 'roslaunch exited: %s' % plain(launch_failure(log))
+                        res['error'] = 'roslaunch exited: %s' % plain(child.killed_for or launch_failure(log))
                         break
                     c = self._controllers(master)
                     if c:

@@ -32,10 +32,10 @@ def make_repo(root, lab, edits=(), add=None, source='reference'):
     return repo
 
 
-def run_grade(lab, isu, repo, workdir, timeout=None):
+def run_grade(lab, isu, repo, workdir, timeout=None, args=()):
     """Run labs/grade like a student; returns (exit code, stdout, {id: (passed, en reason)})."""
     junit = os.path.join(workdir, 'report.xml')
-    cmd = [GRADE, lab, '--isu', isu, '--repo', repo, '--junit', junit]
+    cmd = [GRADE, lab, '--isu', isu, '--repo', repo, '--junit', junit] + list(args)
     if timeout:
         cmd += ['--timeout', str(timeout)]
     p = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, timeout=900)
@@ -48,14 +48,15 @@ def run_grade(lab, isu, repo, workdir, timeout=None):
     return p.returncode, p.stdout, crits
 
 
-def run_cases(lab, cases, root, workers=2):
-    """cases: {name: (isu, make_repo kwargs)} -> {name: run_grade result}, run in parallel."""
+def run_cases(lab, cases, root, workers=2, args=()):
+    """cases: {name: (isu, make_repo kwargs)} -> {name: run_grade result}, run in parallel;
+    `args`: more labs/grade options (e.g. --no-sandbox)."""
     def one(item):
         name, (isu, kw) = item
         d = os.path.join(root, name)
         os.makedirs(d)
         repo = make_repo(d, lab, **kw)
-        return name, run_grade(lab, isu, repo, d)
+        return name, run_grade(lab, isu, repo, d, args=args)
     with ThreadPoolExecutor(workers) as ex:
         return dict(ex.map(one, sorted(cases.items())))
 

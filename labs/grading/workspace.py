@@ -59,10 +59,15 @@ def run_group(cmd, timeout, env=None, cwd=None, log=None):
     return course_testing.run(cmd, timeout, env=env, cwd=cwd, log=log or os.devnull)
 
 
-def sourced_env(script, base=None, timeout=60):
-    """os.environ after `source script` in bash."""
-    r = subprocess.run(['bash', '-c', 'source "$1" >/dev/null 2>&1; env -0', 'x', script],
-                       env=base, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, timeout=timeout)
+def sourced_env(script, base=None, timeout=60, wrap=None):
+    """os.environ after `source script` in bash (run through `wrap(cmd)` when given)."""
+    cmd = ['bash', '-c', 'source "$1" >/dev/null 2>&1; env -0', 'x', script]
+    try:
+        r = subprocess.run(wrap(cmd) if wrap else cmd, env=base, stdout=subprocess.PIPE,
+                           stderr=subprocess.DEVNULL, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        raise StepFailed(reason('%s не выполнился за %d с' % (script, timeout),
+                                'sourcing %s did not finish within %d s' % (script, timeout)))
     env = {}
     for item in r.stdout.split(b'\0'):
         if b'=' in item:
@@ -103,13 +108,19 @@ def build_error(text):
     return (tail[-1] if tail else 'no output')[:300]
 
 
-def build_overlay(pkg_dir, ws, env, timeout=300.0):
-    """Copy pkg_dir into ws/src, catkin_make it; return the env with the overlay sourced."""
+def build_overlay(pkg_dir, ws, env, timeout=300.0, box=None, log=None):
+    """Copy pkg_dir into ws/src, catkin_make it; return the env with the overlay sourced.
+    With a sandbox `box` (grading.sandbox.Sandbox) the build and the sourcing of the overlay
+    run inside it, the workspace writable only during the build; the log goes to `log`
+    (outside the workspace)."""
     os.makedirs(os.path.join(ws, 'src'), exist_ok=True)
     copy_package(pkg_dir, ws)
-    log = os.path.join(ws, 'build.log')
-    rc, timed_out = run_group(['catkin_make', '-C', ws, '-DPYTHON_EXECUTABLE=/usr/bin/python3'],
-                              timeout, env=env, cwd=ws, log=log)
+    log = log or os.path.join(ws, 'build.log')
+    cmd = ['catkin_make', '-C', ws, '-DPYTHON_EXECUTABLE=/usr/bin/python3']
+    if box is not None:
+        box.chown_tree(ws)
+        cmd, env = box.wrap(cmd, writable_ws=True, cwd=ws), box.env(env)
+    rc, timed_out = run_group(cmd, timeout, env=env, cwd=ws if box is None else '/', log=log)
     with open(log, errors='replace') as f:
         text = f.read()
     if timed_out:
@@ -119,4 +130,7 @@ def build_overlay(pkg_dir, ws, env, timeout=300.0):
         cause = build_error(text)
         raise StepFailed(reason('пакет не собирается (catkin_make): %s' % cause,
                                 'the package does not build (catkin_make): %s' % cause))
+    if box is not None:
+        # the overlay's setup files were written by the student's build: source them inside
+        return sourced_env(os.path.join(ws, 'devel', 'setup.bash'), env, wrap=box.wrap)
     return sourced_env(os.path.join(ws, 'devel', 'setup.bash'), env)
