@@ -1,6 +1,6 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full test-stress demo demo-lab2 bench clean
+.PHONY: setup build test test-full test-stress test-class demo demo-lab2 bench clean
 REPEAT ?= 1
 
 setup:
@@ -20,6 +20,11 @@ test-stress: setup
 	bash scripts/stress.sh --repeat $(REPEAT)
 
 # the main demo: the space scanner maps the office, then navigates on its map
+# grading a class: lab 1-3 rosters through labs/grade-class, locally and on a one-node Slurm,
+# gradebooks compared (slow: tens of minutes; not part of make test)
+test-class: setup
+	bash labs/test-class.sh
+
 demo: setup
 	bash scripts/demo.sh
 

@@ -8,11 +8,21 @@ import time
 
 FIRMWARE = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SKETCHES = os.path.join(FIRMWARE, 'sketches')
+# practical work 7's sketches are rosserial_arduino's own examples (one copy, in ros_lib)
+EXAMPLES = os.path.join(os.path.dirname(FIRMWARE), 'catkin_ws', 'src', 'rosserial',
+                        'rosserial_arduino', 'src', 'ros_lib', 'examples')
+EXAMPLE_NAMES = {'hello_world': 'HelloWorld', 'blink': 'Blink', 'ultrasound': 'Ultrasound',
+                 'service_server': 'ServiceServer'}
 
 
 def build(sketch, env=None, timeout=600):
     """firmware/build SKETCH → path of the ELF (raises with the build output on failure)."""
-    path = sketch if os.path.isdir(sketch) else os.path.join(SKETCHES, sketch)
+    if os.path.isdir(sketch):
+        path = sketch
+    elif sketch in EXAMPLE_NAMES:
+        path = os.path.join(EXAMPLES, EXAMPLE_NAMES[sketch])
+    else:
+        path = os.path.join(SKETCHES, sketch)
     p = subprocess.run([os.path.join(FIRMWARE, 'build'), path], env=env, timeout=timeout,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
     if p.returncode != 0:

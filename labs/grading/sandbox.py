@@ -59,6 +59,7 @@ def probe():
     return None
 
 
+
 def netns_prefix():
     """Run a command in a new network namespace with only its loopback up."""
     return ['unshare', '--net', '--', 'sh', '-c', 'ip link set lo up && exec "$@"', 'grading-netns']
@@ -138,8 +139,9 @@ class Sandbox:
             # the student's own overlay environment; only the master's address from the caller
             keep = {k: env[k] for k in ('ROS_MASTER_URI', 'ROS_IP', 'DISPLAY', 'QT_QPA_PLATFORM') if k in env}
             env = dict(self.student_env, **keep)
-            if 'DISPLAY' not in keep:
-                env.pop('DISPLAY', None)
+            for k in ('DISPLAY', 'QT_QPA_PLATFORM'):   # the caller's say, not the overlay's
+                if k not in keep:
+                    env.pop(k, None)
         env = {k: v for k, v in env.items() if not k.startswith('GRADING_')}
         for var in ('ROS_PACKAGE_PATH', 'PYTHONPATH', 'CMAKE_PREFIX_PATH'):
             if var in env:
