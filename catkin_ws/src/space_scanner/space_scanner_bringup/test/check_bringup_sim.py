@@ -6,12 +6,12 @@ map -> odom transform, and `rosrun map_server map_saver -f` writes it."""
 import os
 import subprocess
 import tempfile
-import time
 import unittest
 
 import rosgraph
 import rospy
 import rostest
+from course_testing import wait_for
 import tf2_ros
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import OccupancyGrid, Odometry
@@ -20,14 +20,12 @@ from sensor_msgs.msg import Imu
 WALL_TIMEOUT = 240.0
 
 
-class BringupSim(unittest.TestCase):
-    def wait(self, cond, what, timeout=WALL_TIMEOUT):
-        end = time.monotonic() + timeout
-        while not cond():
-            if rospy.is_shutdown() or time.monotonic() > end:
-                self.fail('timed out (%.0f s wall) waiting for %s' % (timeout, what))
-            time.sleep(0.1)
+def wait(cond, what, timeout=WALL_TIMEOUT):
+    wait_for(lambda: rospy.is_shutdown() or cond(), timeout, 0.1, what)
+    assert not rospy.is_shutdown(), 'shut down while waiting for %s' % what
 
+
+class BringupSim(unittest.TestCase):
     def publishers(self, topic):
         pubs, _subs, _srvs = rosgraph.Master('/check').getSystemState()
         return next((nodes for t, nodes in pubs if t == topic), [])
@@ -36,16 +34,16 @@ class BringupSim(unittest.TestCase):
         got = {}
         for topic, typ in (('/odom', Odometry), ('/imu/data', Imu), ('/map', OccupancyGrid)):
             rospy.Subscriber(topic, typ, lambda m, t=topic: got.__setitem__(t, m), queue_size=1)
-        self.wait(lambda: '/odom' in got, 'odom from the EKF')
+        wait(lambda: '/odom' in got, 'odom from the EKF')
         self.assertEqual(self.publishers('/odom'), ['/ekf_loc_node'])
         self.assertEqual(got['/odom'].header.frame_id, 'odom')
-        self.wait(lambda: '/imu/data' in got, 'imu/data from imu_filter_node')
+        wait(lambda: '/imu/data' in got, 'imu/data from imu_filter_node')
         self.assertEqual(self.publishers('/imu/data'), ['/imu_filter_node'])
         q = got['/imu/data'].orientation
         self.assertAlmostEqual(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, 1.0, places=3)
 
         pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=1)
-        self.wait(lambda: pub.get_num_connections() > 0, 'diffbot_controller listening')
+        wait(lambda: pub.get_num_connections() > 0, 'diffbot_controller listening')
         cmd = Twist()
         cmd.angular.z = 0.8
         t_end = rospy.get_time() + 6.0       # turn on the spot: the lidar sees the whole room
@@ -54,7 +52,7 @@ class BringupSim(unittest.TestCase):
             rospy.sleep(0.05)
         pub.publish(Twist())
         start = rospy.get_time()
-        self.wait(lambda: '/map' in got and got['/map'].header.stamp.to_sec() > start,
+        wait(lambda: '/map' in got and got['/map'].header.stamp.to_sec() > start,
                   'a map from slam_gmapping after the turn')
         m = got['/map']
         occupied = sum(1 for v in m.data if v == 100)
@@ -63,7 +61,7 @@ class BringupSim(unittest.TestCase):
         self.assertGreater(free, 1000, 'free floor in the map')
         buf = tf2_ros.Buffer()
         tf2_ros.TransformListener(buf)
-        self.wait(lambda: buf.can_transform('map', 'base_link', rospy.Time(0)), 'map -> base_link')
+        wait(lambda: buf.can_transform('map', 'base_link', rospy.Time(0)), 'map -> base_link')
 
         out = os.path.join(tempfile.mkdtemp(prefix='bringup_map_'), 'mymap')
         r = subprocess.run(['rosrun', 'map_server', 'map_saver', '-f', out], capture_output=True,

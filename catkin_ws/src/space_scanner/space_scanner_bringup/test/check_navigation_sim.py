@@ -4,29 +4,27 @@ robot (amcl_pose near the simulator's ground truth), move_base takes a goal 1.4 
 its action and reaches it (ground truth within the diploma's xy_goal_tolerance + a margin),
 publishing a global plan."""
 import math
-import time
 import unittest
 
 import actionlib
 import rospy
 import rostest
+from course_testing import wait_for
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from nav_msgs.msg import Path
 
 WALL_TIMEOUT = 240.0
+
+
+def wait(cond, what, timeout=WALL_TIMEOUT):
+    wait_for(lambda: rospy.is_shutdown() or cond(), timeout, 0.1, what)
+    assert not rospy.is_shutdown(), 'shut down while waiting for %s' % what
 GOAL = (1.0, -1.0)
 
 
 class NavigationSim(unittest.TestCase):
-    def wait(self, cond, what, timeout=WALL_TIMEOUT):
-        end = time.monotonic() + timeout
-        while not cond():
-            if rospy.is_shutdown() or time.monotonic() > end:
-                self.fail('timed out (%.0f s wall) waiting for %s' % (timeout, what))
-            time.sleep(0.1)
-
     def test_goal_reached(self):
         got = {}
         rospy.Subscriber('/amcl_pose', PoseWithCovarianceStamped, lambda m: got.__setitem__('amcl', m))
@@ -35,14 +33,14 @@ class NavigationSim(unittest.TestCase):
         truth = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
         client = actionlib.SimpleActionClient('move_base', MoveBaseAction)
         self.assertTrue(client.wait_for_server(rospy.Duration(WALL_TIMEOUT)), 'no move_base action server')
-        self.wait(lambda: 'amcl' in got, 'amcl_pose')
+        wait(lambda: 'amcl' in got, 'amcl_pose')
         goal = MoveBaseGoal()
         goal.target_pose.header.frame_id = 'map'
         goal.target_pose.header.stamp = rospy.Time.now()
         goal.target_pose.pose.position.x, goal.target_pose.pose.position.y = GOAL
         goal.target_pose.pose.orientation.w = 1.0
         client.send_goal(goal)
-        self.wait(lambda: client.get_state() not in (0, 1), 'move_base to finish the goal')  # PENDING, ACTIVE
+        wait(lambda: client.get_state() not in (0, 1), 'move_base to finish the goal')  # PENDING, ACTIVE
         self.assertEqual(client.get_state(), 3, 'goal state %d: %s' % (
             client.get_state(), client.get_goal_status_text()))
         p = truth(model_name='robot').pose.position
