@@ -6,7 +6,6 @@ import shutil
 import sys
 
 import numpy as np
-import pytest
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
 from rqt_gui.testing import gui_env, states
@@ -14,7 +13,6 @@ from rqt_gui.testing import gui_env, states
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-@pytest.mark.full
 def test_image_view_shows_sim_camera(roscore, xvfb, tmp_path):
     env = gui_env(roscore.env, xvfb.display, tmp_path / 'config')
     flag = tmp_path / 'shot.done'

@@ -4,7 +4,6 @@ import os
 import subprocess
 import sys
 
-import pytest
 from course_testing import Proc, wait_for
 from rqt_gui.testing import gui_env, states
 
@@ -18,7 +17,6 @@ def pose(env):
             if ':' in l and l.split(':')[0].strip() in ('x', 'y', 'theta', 'linear_velocity')}
 
 
-@pytest.mark.full
 def test_steering_drives_turtlesim(roscore, xvfb, tmp_path):
     env = gui_env(roscore.env, xvfb.display, tmp_path / 'config')
     procs = []

@@ -48,10 +48,11 @@ class ObservationSource:
         origin_frame = p['sensor_frame'] or frame
         g = self.owner.global_frame
         try:
-            t_pts = self.owner.tf_buffer.lookup_transform(g, frame, msg.header.stamp,
-                                                          rospy.Duration(0.1))
+            # the original holds observations in a tf message filter until TF has caught up
+            wait = rospy.Duration(max(0.1, self.owner.transform_tolerance))
+            t_pts = self.owner.tf_buffer.lookup_transform(g, frame, msg.header.stamp, wait)
             t_org = t_pts if origin_frame == frame else self.owner.tf_buffer.lookup_transform(
-                g, origin_frame, msg.header.stamp, rospy.Duration(0.1))
+                g, origin_frame, msg.header.stamp, wait)
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
                 tf2_ros.ExtrapolationException) as e:
             rospy.logwarn_throttle(

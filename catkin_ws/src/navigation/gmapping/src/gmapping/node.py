@@ -17,6 +17,8 @@ from map_server.conversions import NumpyGetMap, NumpyGetMapResponse, NumpyOccupa
 INT_PARAMS = ('particles', 'kernelSize', 'iterations', 'lskip', 'throttle_scans')
 STR_PARAMS = ('base_frame', 'map_frame', 'odom_frame')
 NO_SCAN_WARN = 5.0      # s without a scan before the watchdog warns
+TF_WAIT = 1.0           # s (simulated when use_sim_time) a scan waits for its odometry transform,
+                        # as the original's tf message filter holds scans until TF has caught up
 
 
 def read_params():
@@ -79,12 +81,16 @@ class SlamGMapping(object):
 
     def publish_loop(self):
         rate = rospy.Rate(1.0 / self.p.transform_publish_period)
+        last = None
         while not rospy.is_shutdown():
             self.check_scans()
             with self.lock:
                 pose = self.map_to_odom.copy()
             stamp = rospy.Time.now() + rospy.Duration(self.p.tf_delay)
-            if not stamp.is_zero():
+            # a loop that catches up after a jump of the simulated clock would send the same
+            # stamp twice (tf2's TF_REPEATED_DATA warning in every listener): once per stamp
+            if not stamp.is_zero() and stamp != last:
+                last = stamp
                 self.tf_broadcaster.sendTransform(
                     conversions.transform_msg(pose, self.p.map_frame, self.p.odom_frame, stamp))
             try:
@@ -101,7 +107,7 @@ class SlamGMapping(object):
     def odom_laser_pose(self, scan):
         try:
             t = self.tf_buffer.lookup_transform(self.p.odom_frame, scan.header.frame_id, scan.header.stamp,
-                                                rospy.Duration(0.2))
+                                                rospy.Duration(TF_WAIT))
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as e:
             rospy.logwarn_throttle(5.0, 'Failed to compute odom pose, skipping scan: no transform from '
                                    '"%s" (scan frame) to "%s" (odom_frame): %s'

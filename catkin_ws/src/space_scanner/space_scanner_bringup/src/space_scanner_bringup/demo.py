@@ -220,6 +220,13 @@ def main(argv=None):
     core.start()
     env = dict(os.environ, **core.env)
     os.environ.update(core.env)
+    # tf2's C++ core prints TF_REPEATED_DATA and similar warnings of this process's listener
+    # straight to fd 2; they go to a log of their own so the console keeps the demo's story
+    err_log = os.path.join(out, 'demo_stderr.log')
+    err_fd = os.open(err_log, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o644)
+    os.dup2(err_fd, 2)
+    os.close(err_fd)
+    say('logs in %s (demo_stderr.log, explore.log, navigation.log)' % out)
     try:
         import rospy
         rospy.set_param('/use_sim_time', True)

@@ -34,7 +34,8 @@ def summary(msg):
     (Image: width height encoding step and mean intensity; LaserScan: sample count, range
     limits, finite readings and the nearest one; PointCloud2: size and fields; Imu:
     orientation, angular velocity, linear acceleration; Odometry: pose; CameraInfo: size and
-    K). Always includes the header's frame_id and stamp when the message has a header."""
+    K; JointState: position and velocity by joint name). Always includes the header's frame_id
+    and stamp when the message has a header."""
     t = msg._type
     out = {'type': t}
     header = getattr(msg, 'header', None)
@@ -65,6 +66,9 @@ def summary(msg):
     elif t == 'nav_msgs/Odometry':
         out.update(child_frame_id=msg.child_frame_id, pose=pose_dict(msg.pose.pose),
                    vx=msg.twist.twist.linear.x, wz=msg.twist.twist.angular.z)
+    elif t == 'sensor_msgs/JointState':
+        out.update(position={n: float(v) for n, v in zip(msg.name, msg.position)},
+                   velocity={n: float(v) for n, v in zip(msg.name, msg.velocity)})
     return out
 
 
