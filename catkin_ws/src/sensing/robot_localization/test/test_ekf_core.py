@@ -188,6 +188,14 @@ def test_normalize_angle():
     assert normalize_angle(-3 * math.pi / 2) == pytest.approx(math.pi / 2)
 
 
+def _not_diagonal(cov):
+    """The same covariance with a negligible off-diagonal term: the core's batch update path."""
+    c = np.array(cov, float)
+    if len(c) > 1:
+        c[0, 1] = c[1, 0] = 1e-15
+    return c
+
+
 def test_sequential_update_equals_batch_update():
     rng = np.random.default_rng(5)
     A = rng.normal(size=(15, 15))
@@ -195,13 +203,12 @@ def test_sequential_update_equals_batch_update():
     for idx, r in (([6, 7, 11], [0.1, 0.2, 0.05]), ([0, 1, 5, 2, 3, 4], [1e-3, 1e-3, 0.01, 1e-6, 1e-6, 1e-6])):
         a, b = Ekf(), Ekf()
         for e in (a, b):
-            e.x = rng.normal(size=15) * 0 + np.arange(15) * 0.01
+            e.x = np.arange(15) * 0.01
             e.P = P0.copy()
             e.initialized = True
         z = np.array([0.5] * len(idx))
-        m = Measurement(0.0, z, np.diag(r), idx)
-        assert a._correct_sequential(m, m.indices, np.array(r))
-        assert b._correct_batch(m, m.indices, np.diag(r))
+        assert a.correct(Measurement(0.0, z, np.diag(r), idx))                   # sequential
+        assert b.correct(Measurement(0.0, z, _not_diagonal(np.diag(r)), idx))    # batch
         assert np.allclose(a.x, b.x, atol=1e-9)
         assert np.allclose(a.P, b.P, atol=1e-9)
 
@@ -211,8 +218,7 @@ def test_gate_is_the_same_in_both_paths():
         e = Ekf()
         e.initialized, e.last_time = True, 0.0
         e.P = np.eye(15)
-        m = Measurement(0.0, [2.0, 2.0], np.eye(2), [X, Y], threshold=2.0)   # d^2 = 4 + ... >= 4
-        cov = np.array([[1.0, 0.0], [0.0, 1.0]])
-        ok = e._correct_sequential(m, m.indices, np.diagonal(cov)) if path == 'seq' else \
-            e._correct_batch(m, m.indices, cov)
+        cov = np.eye(2) if path == 'seq' else _not_diagonal(np.eye(2))
+        m = Measurement(0.0, [2.0, 2.1], cov, [X, Y], threshold=2.0)   # d^2 = 2 + 2.205 >= 4
+        ok = e.correct(m)
         assert not ok and e.rejected == 1

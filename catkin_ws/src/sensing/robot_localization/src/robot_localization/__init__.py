@@ -1,1 +1,1 @@
-"""Re-implementation of robot_localization's ekf_localization_node (Python + NumPy)."""
+"""Re-implementation of robot_localization's ekf_localization_node (Python node, C++ EKF core)."""

@@ -15,6 +15,7 @@ import argparse
 import json
 import math
 import os
+import signal
 import subprocess
 import sys
 import threading
@@ -216,6 +217,14 @@ def main(argv=None):
     def say(text):
         print('[demo] ' + text, flush=True)
 
+    def interrupted(signum, _frame):
+        raise KeyboardInterrupt('signal %d' % signum)
+
+    # Ctrl-C, and SIGTERM or SIGINT also when started in the background (where a shell ignores
+    # SIGINT): the finally blocks stop the launch files and the master
+    signal.signal(signal.SIGINT, interrupted)
+    signal.signal(signal.SIGTERM, interrupted)
+
     core = RosCore(log_dir=os.path.join(out, 'ros_log'))
     core.start()
     env = dict(os.environ, **core.env)
@@ -277,6 +286,9 @@ def main(argv=None):
     except (RuntimeError, OSError) as e:
         say('FAILED: %s' % e)
         return 1
+    except KeyboardInterrupt:
+        say('interrupted: stopping the simulation and the master')
+        return 130
     finally:
         core.stop()
 
