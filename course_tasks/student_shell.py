@@ -147,7 +147,9 @@ def wait_topic(topic, env, timeout=90.0, proc=None):
     last = None
     while time.monotonic() < deadline:
         try:
-            return echo_once(topic, env, timeout=max(1.0, min(10.0, deadline - time.monotonic())))
+            # one echo for the whole wait (it waits for the publisher itself): restarting it every
+            # few seconds never gets through when starting rostopic alone takes that long
+            return echo_once(topic, env, timeout=max(1.0, deadline - time.monotonic()))
         except AssertionError as e:
             last = e
             time.sleep(0.3)

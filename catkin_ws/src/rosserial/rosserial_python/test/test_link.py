@@ -263,7 +263,8 @@ def test_device_service_and_silent_device_times_out(bench_factory):
     start = time.monotonic()
     with pytest.raises(DeviceServiceTimeout, match='no response from the device within 0.5 s'):
         call(p.pack_string('nobody home'))
-    assert time.monotonic() - start < 5
+    # the call waited for its timeout (0.5 s) and then gave up: no hang (bound far above it)
+    assert 0.45 <= time.monotonic() - start < 60
 
 
 def test_device_calls_a_ros_service(bench_factory):

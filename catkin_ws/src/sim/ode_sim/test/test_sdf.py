@@ -1,6 +1,5 @@
 """ode_sim.description.sdf and ode_sim.description.resolve: SDF 1.4-1.6 worlds and models, model:// lookup, errors."""
 import os
-import time
 
 import numpy as np
 import pytest
@@ -79,9 +78,7 @@ def test_resolve_world(monkeypatch, tmp_path):
 # ------------------------------------------------------------------ worlds
 
 def test_textbook_world_sdf_1_4():
-    t = time.perf_counter()
     w = load_world(os.path.join(WORLDS, 'textbook.world'))
-    elapsed = time.perf_counter() - t
     assert w.name == 'default'
     assert w.gravity == (0.0, 0.0, -9.8)
     ph = w.physics
@@ -105,7 +102,6 @@ def test_textbook_world_sdf_1_4():
     vis = link.visuals[0]
     assert vis.material_name == 'Gazebo/Grey' and vis.color == materials.GAZEBO_MATERIALS['Gazebo/Grey']
     assert w.warnings == []
-    assert elapsed < 0.05, elapsed
 
 
 def test_features_world():

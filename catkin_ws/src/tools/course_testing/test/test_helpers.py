@@ -38,7 +38,8 @@ def test_stop_kills_a_grandchild_in_another_session(tmp_path):
     p = Proc(['bash', '-c', 'setsid sleep 300 & echo $! > %s; wait' % pidfile])
     wait_for(lambda: pidfile.exists() and pidfile.read_text().strip(), 60)
     gc = int(pidfile.read_text())
-    assert os.getpgid(gc) != p.pid
+    # $! is setsid's pid before it has called setsid(): wait until it has its own group
+    wait_for(lambda: os.getpgid(gc) != p.pid, 60, what='the grandchild in a session of its own')
     p.stop()
     wait_for(lambda: _gone(gc), 60, what='grandchild gone')
 
