@@ -49,11 +49,15 @@ class WsClient(object):
         self.sock.sendall(header + mask + body)
 
     def _read(self, n):
-        while len(self.buf) < n:
-            chunk = self.sock.recv(max(65536, n - len(self.buf)))
-            if not chunk:
-                raise ConnectionError('connection closed by the server')
-            self.buf += chunk
+        if len(self.buf) < n:
+            chunks, have = [self.buf], len(self.buf)
+            while have < n:
+                chunk = self.sock.recv(max(262144, n - have))
+                if not chunk:
+                    raise ConnectionError('connection closed by the server')
+                chunks.append(chunk)
+                have += len(chunk)
+            self.buf = b''.join(chunks)
         out, self.buf = self.buf[:n], self.buf[n:]
         return out
 

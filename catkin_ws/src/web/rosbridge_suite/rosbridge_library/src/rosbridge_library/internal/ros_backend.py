@@ -36,8 +36,10 @@ class _Subscriber(object):
     def __init__(self, topic, msg_type, callback, queue_size):
         self.type = msg_type
         self.listeners = {}     # client id -> callback
+        # a large receive buffer: rospy's default 64 KiB delays large messages (images)
         self.sub = rospy.Subscriber(topic, ros_loader.get_message_class(msg_type), callback,
-                                    callback_args=topic, queue_size=queue_size)
+                                    callback_args=topic, queue_size=queue_size,
+                                    buff_size=2 ** 24)
 
 
 class RosBackend(Backend):
