@@ -2,7 +2,7 @@
 import signal
 import socket
 import sys
-import time
+import threading
 
 import rospy
 from std_msgs.msg import Int32
@@ -30,20 +30,30 @@ def _clients_publishers():
     return publish
 
 
-def _bind(s):
+def _bind(s, stopping):
     """Bind the listening sockets, retrying every retry_startup_delay s as the original."""
-    while not rospy.is_shutdown():
+    while not rospy.is_shutdown() and not stopping.is_set():
         try:
             return netutil.bind_sockets(s['port'], s['address'] or None,
                                         family=socket.AF_UNSPEC)
         except OSError as e:
             rospy.logwarn('Unable to start server: %s Retrying in %ss.'
                           % (e, s['retry_startup_delay']))
-            time.sleep(s['retry_startup_delay'] or 1.0)
+            stopping.wait(s['retry_startup_delay'] or 1.0)
     return None
 
 
 def main(argv=None):
+    stopping = threading.Event()
+    loop_box = []
+
+    def stop(*_):
+        """SIGINT/SIGTERM (roslaunch's shutdown), also while still starting up."""
+        stopping.set()
+        if loop_box:
+            loop_box[0].add_callback_from_signal(loop_box[0].stop)
+    signal.signal(signal.SIGINT, stop)
+    signal.signal(signal.SIGTERM, stop)
     rospy.init_node('rosbridge_websocket', disable_signals=True)
     try:
         s = settings_mod.read(lambda name, default: rospy.get_param('~' + name, default))
@@ -70,7 +80,7 @@ def main(argv=None):
     if s['certfile'] and s['keyfile']:
         ssl_options = {'certfile': s['certfile'], 'keyfile': s['keyfile']}
 
-    sockets = _bind(s)
+    sockets = _bind(s, stopping)
     if sockets is None:
         return
     http = HTTPServer(app, ssl_options=ssl_options,
@@ -80,11 +90,11 @@ def main(argv=None):
     rospy.set_param('~actual_port', port)
     loop = IOLoop.current()
     server.loop = loop
-
-    def stop(*_):
-        loop.add_callback_from_signal(loop.stop)
-    signal.signal(signal.SIGINT, stop)
-    signal.signal(signal.SIGTERM, stop)
+    loop_box.append(loop)
+    if stopping.is_set():
+        http.stop()
+        rospy.signal_shutdown('rosbridge_websocket stopped')
+        return
     rospy.on_shutdown(lambda: loop.add_callback(loop.stop))
     scheme = 'wss' if ssl_options else 'ws'
     rospy.loginfo('Rosbridge WebSocket server started at %s://%s:%d'
