@@ -1,4 +1,6 @@
 """rosapi's answers from canned master replies, and type definitions (no master)."""
+import pytest
+
 from rosapi import graph, objectutils
 
 STATE = [
@@ -36,7 +38,12 @@ def test_nodes_services_and_details():
 
 def test_params_cross_as_json():
     assert graph.param_to_json({'a': [1, 2.5]}) == '{"a": [1, 2.5]}'
-    assert graph.json_to_param('3') == 3 and graph.json_to_param('hello') == 'hello'
+    assert graph.json_to_param('3') == 3
+    with pytest.raises(ValueError) as e:
+        graph.json_to_param('hello')
+    assert 'must be a JSON-formatted string' in str(e.value)
+    assert graph.default_param('') is None and graph.default_param('[1]') == [1]
+    assert graph.default_param('plain') == 'plain'
     assert graph.param_names(['/a', '/b/c'], ['/b/*']) == ['/b/c']
 
 

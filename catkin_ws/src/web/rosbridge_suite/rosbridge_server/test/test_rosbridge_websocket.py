@@ -138,6 +138,7 @@ def test_params_through_rosapi(bridge, ros):
     assert bridge.param('/web_test/gain') == {'kp': 1.5, 'names': ['a', 'b']}
     assert roslibpy.Param(ros, '/turtlesim/background_r').get(timeout=30) == 69
     assert '/web_test/gain/kp' in ros.get_params()
+    assert roslibpy.Param(ros, '/no/such/param').get(timeout=30) is None
 
 
 def test_client_service_called_from_rospy(bridge, ros):

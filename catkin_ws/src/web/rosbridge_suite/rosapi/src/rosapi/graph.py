@@ -95,7 +95,18 @@ def param_to_json(value):
 
 
 def json_to_param(text):
-    """SetParam's value: JSON text; plain text that is not JSON is taken as a string."""
+    """SetParam's value: JSON text (anything else is refused, as the original)."""
+    try:
+        return json.loads(text)
+    except ValueError:
+        raise ValueError('Due to the type flexibility of the ROS parameter server, the value '
+                         'argument to set_param must be a JSON-formatted string.')
+
+
+def default_param(text):
+    """GetParam's default: '' -> None (null), JSON text -> its value, other text -> itself."""
+    if text == '':
+        return None
     try:
         return json.loads(text)
     except ValueError:

@@ -123,13 +123,18 @@ class RosApi(object):
 
     def set_param(self, req):
         if graph.allowed(req.name, self.params_glob):
-            rospy.set_param(req.name, graph.json_to_param(req.value))
+            try:
+                value = graph.json_to_param(req.value)
+            except ValueError as e:
+                raise rospy.ServiceException(str(e))
+            rospy.set_param(req.name, value)
         return []
 
     def get_param(self, req):
-        if graph.allowed(req.name, self.params_glob) and rospy.has_param(req.name):
-            return [graph.param_to_json(rospy.get_param(req.name))]
-        return [req.default]
+        default = graph.default_param(req.default)
+        if graph.allowed(req.name, self.params_glob):
+            return [graph.param_to_json(rospy.get_param(req.name, default))]
+        return [graph.param_to_json(default)]
 
     def has_param(self, req):
         return [graph.allowed(req.name, self.params_glob) and rospy.has_param(req.name)]
