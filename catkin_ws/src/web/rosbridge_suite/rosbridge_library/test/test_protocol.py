@@ -69,6 +69,8 @@ class FakeBackend(Backend):
 
     def call_service(self, service, srv_type, request, timeout=None):
         if service == '/add':
+            if request.a == 99:
+                time.sleep(3)
             if request.a < 0:
                 raise Exception('service raised: negative')
             resp = ros_loader.get_service_response_instance(srv_type)
@@ -260,6 +262,9 @@ def test_call_service_answers_with_the_id(backend):
     c.wait(lambda f: f.get('op') == 'status' and f.get('id') == 'call3')
     c(op='call_service', service='/missing', id='call4')
     c.wait(lambda f: f.get('id') == 'call4' and f.get('result') is False)
+    c(op='call_service', service='/add', args={'a': 99, 'b': 0}, id='call5', timeout=0.2)
+    (late,) = c.wait(lambda f: f.get('op') == 'service_response' and f.get('id') == 'call5')
+    assert late['result'] is False and 'timed out after 0.2 s' in late['values']
 
 
 def test_client_advertised_service(backend):

@@ -48,13 +48,32 @@ class CallService(Capability):
             if srv_type is None:
                 raise Exception('Service %s does not exist' % service)
             request = args_to_request(args, ros_loader.get_service_request_instance(srv_type))
-            response = self.backend.call_service(service, srv_type, request, timeout)
+            response = self._call_with_timeout(service, srv_type, request, timeout)
             values = message_conversion.extract_values(response)
         except Exception as e:   # a failing service answers this call only
             self.protocol.log('error', 'call_service %s: %s' % (service, e), cid)
             self._respond(service, cid, False, str(e), fragment_size, compression)
             return
         self._respond(service, cid, True, values, fragment_size, compression)
+
+    def _call_with_timeout(self, service, srv_type, request, timeout):
+        if not timeout:
+            return self.backend.call_service(service, srv_type, request, None)
+        box = {}
+
+        def call():
+            try:
+                box['response'] = self.backend.call_service(service, srv_type, request, timeout)
+            except Exception as e:   # handed to the waiting thread
+                box['error'] = e
+        t = threading.Thread(target=call, daemon=True, name='call %s' % service)
+        t.start()
+        t.join(timeout)
+        if t.is_alive():
+            raise Exception('Service call to %s timed out after %s s' % (service, timeout))
+        if 'error' in box:
+            raise box['error']
+        return box['response']
 
     def _respond(self, service, cid, result, values, fragment_size, compression):
         out = {'op': 'service_response', 'service': service, 'values': values, 'result': result}
