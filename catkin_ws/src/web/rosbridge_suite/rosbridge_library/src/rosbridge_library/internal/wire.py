@@ -1,6 +1,7 @@
 """Wire encodings of outgoing protocol messages: JSON text, CBOR, PNG and fragments.
 
-A frame is ``(data, binary)``: ``str`` for a WebSocket text frame, ``bytes`` for a binary one.
+A frame is ``(data, binary)``: UTF-8 ``bytes`` of JSON for a WebSocket text frame
+(binary False) or CBOR bytes (binary True); encoded once, however many clients get it.
 """
 import base64
 import io
@@ -67,6 +68,15 @@ def frames(message, compression='none', fragment_size=None, mid=None):
     """The frames that carry `message` (a dict) with this compression and fragment size."""
     if compression in ('cbor', 'cbor-raw'):
         return [(to_cbor(message), True)]
+    return [(_utf8(data), binary) for data, binary in _text_frames(message, compression,
+                                                                    fragment_size, mid)]
+
+
+def _utf8(text):
+    return text.encode('utf-8')
+
+
+def _text_frames(message, compression, fragment_size, mid):
     text = to_json(message)
     if compression == 'png':
         data = png_encode(text)
