@@ -2,6 +2,7 @@
 whole module): roslibpy drives the turtle, calls /spawn and rosapi, gets and sets parameters
 and provides a service that rospy calls; bad input gets a status and disturbs nothing; 20
 clients on a 100 Hz topic, one of which never reads; a client's departure leaves nothing."""
+import json
 import os
 import re
 import subprocess
@@ -273,3 +274,20 @@ def test_disconnect_leaves_nothing_behind(bridge):
     wait_for(gone, 30, what='no publisher/subscriber/service left after the client went: %s'
              % (bridge.registrations(),))
     assert bridge.launch.alive()
+
+
+def test_cbor_and_png_compressions(bridge):
+    import cbor2
+    from rosbridge_library.internal import wire
+    c = WsClient(bridge.port)
+    try:
+        c.send(op='subscribe', topic='/turtle1/pose', compression='cbor', id='c')
+        opcode, payload = c.recv_frame()
+        m = cbor2.loads(payload)
+        assert opcode == 2 and m['op'] == 'publish' and 'x' in m['msg']
+        c.send(op='unsubscribe', topic='/turtle1/pose', id='c')
+        c.send(op='subscribe', topic='/turtle1/pose', compression='png', id='p')
+        m = c.recv_until(lambda m: m.get('op') == 'png')
+        assert 'theta' in json.loads(wire.png_decode(m['data']))['msg']
+    finally:
+        c.close()
