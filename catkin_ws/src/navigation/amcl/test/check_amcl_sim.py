@@ -26,6 +26,7 @@ TOL_XY, TOL_YAW = 0.10, 0.10      # converged: amcl's TF against the ground trut
 # round trip while the simulator runs faster than real time): only a sanity bound
 DRIVE_XY, DRIVE_YAW = 0.20, 0.20
 STATIC_XY, STATIC_YAW = 0.08, 0.08  # after stopping: an exact comparison
+NOMOTION_UPDATES = 15   # no-motion updates allowed to recover from a wrong initialpose
 
 
 def load_map(yaml_path):
@@ -170,13 +171,18 @@ class AmclOfficeTest(unittest.TestCase):
         init_pub = rospy.Publisher('/initialpose', PoseWithCovarianceStamped, queue_size=1, latch=True)
         self.wait(lambda: init_pub.get_num_connections() > 0, 'amcl subscribing /initialpose')
         init_pub.publish(init)
-        for _ in range(6):
+        # the filter is random: count the updates it takes (typically 3-6), with room for an
+        # unlucky draw; the stamps tell that each update has been published
+        for n in range(1, NOMOTION_UPDATES + 1):
             stamp = self.pose.header.stamp
             nomotion()
             self.wait(lambda: self.pose.header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
-        dxy, dyaw = self.error()
-        self.assertLess(dxy, STATIC_XY, 'position error after initialpose 0.5 m off + 6 no-motion updates')
-        self.assertLess(dyaw, STATIC_YAW, 'yaw error after initialpose 20 deg off + 6 no-motion updates')
+            dxy, dyaw = self.error()
+            if n >= 3 and dxy < STATIC_XY and dyaw < STATIC_YAW:
+                break
+        rospy.loginfo('amcl recovered from initialpose 0.5 m / 20 deg off after %d no-motion updates', n)
+        self.assertLess(dxy, STATIC_XY, 'position error after initialpose 0.5 m off + %d no-motion updates' % n)
+        self.assertLess(dyaw, STATIC_YAW, 'yaw error after initialpose 20 deg off + %d no-motion updates' % n)
 
 if __name__ == '__main__':
     rospy.init_node('check_amcl_sim')

@@ -14,6 +14,7 @@ from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from nav_msgs.msg import Path
+from std_srvs.srv import Empty
 
 WALL_TIMEOUT = 240.0
 
@@ -46,6 +47,13 @@ class NavigationSim(unittest.TestCase):
         p = truth(model_name='robot').pose.position
         self.assertLess(math.hypot(p.x - GOAL[0], p.y - GOAL[1]), 0.35,
                         'ground truth (%.2f, %.2f) vs goal %s' % (p.x, p.y, GOAL))
+        # amcl publishes a pose only after a filter update (every update_min_d of travel): at
+        # rest a no-motion update gives one for where the robot stands now
+        rospy.wait_for_service('/request_nomotion_update', WALL_TIMEOUT)
+        stamp = got['amcl'].header.stamp
+        rospy.ServiceProxy('/request_nomotion_update', Empty)()
+        wait(lambda: got['amcl'].header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
+        p = truth(model_name='robot').pose.position
         a = got['amcl'].pose.pose.position
         self.assertLess(math.hypot(a.x - p.x, a.y - p.y), 0.2,
                         'amcl (%.2f, %.2f) vs ground truth (%.2f, %.2f)' % (a.x, a.y, p.x, p.y))
