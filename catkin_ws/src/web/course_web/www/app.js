@@ -168,5 +168,5 @@ async function main() {
 // for tests and the console: courseWeb.addPanel('plot', {x, y, w, h}, {fields: [...]})
 window.courseWeb = { addPanel: (t, g, o) => addPanel(t, g, o).id, setLayout, currentLayout,
   panels: () => panels.map(p => ({ id: p.id, type: p.kind.type, stats: p.inst && p.inst.stats ? p.inst.stats() : {} })),
-  connected: () => !!(ros && ros.isConnected) };
+  connected: () => !!(ros && ros.isConnected), ros: () => ros };
 main();
