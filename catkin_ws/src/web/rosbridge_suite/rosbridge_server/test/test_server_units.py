@@ -1,0 +1,66 @@
+"""rosbridge_server without ROS: the bounded client queue and the parameter parsing."""
+import pytest
+
+from rosbridge_server import settings
+from rosbridge_server.client_queue import ClientQueue
+
+
+def test_queue_wakes_the_writer_once_and_keeps_order():
+    q = ClientQueue(max_messages=10, max_bytes=1000)
+    assert q.put('a') is True          # idle writer: start it
+    assert q.put('b') is False         # already draining
+    assert q.get() == ('a', False) and q.get() == ('b', False)
+    assert q.get() is None             # writer stops...
+    assert q.put('c') is True          # ...and is started again
+
+
+def test_queue_drops_the_oldest_past_its_bounds():
+    q = ClientQueue(max_messages=3, max_bytes=10 ** 6)
+    for i in range(10):
+        q.put(str(i))
+    assert len(q) == 3 and q.dropped == 7
+    assert [q.get()[0] for _ in range(3)] == ['7', '8', '9']
+    q = ClientQueue(max_messages=100, max_bytes=25)
+    for i in range(10):
+        q.put(b'x' * 10, True)
+    assert q.bytes <= 25 and q.dropped == 8 and q.high_water <= 25
+    q = ClientQueue(max_messages=100, max_bytes=5)
+    q.put('a' * 50)                    # one frame larger than the bound still goes
+    assert len(q) == 1
+
+
+def test_closed_queue_takes_nothing():
+    q = ClientQueue()
+    q.put('a')
+    q.close()
+    assert q.put('b') is False and q.get() is None and q.bytes == 0
+
+
+def test_settings_defaults_as_the_original_launch_gives_them():
+    launch = {'port': 9090, 'address': '0.0.0.0', 'max_message_size': 'None',
+              'websocket_external_port': 'None', 'topics_glob': '[*]', 'services_glob': '[*]',
+              'params_glob': '[*]', 'unregister_timeout': 10, 'retry_startup_delay': 5}
+    s = settings.read(lambda n, d: launch.get(n, d))
+    assert s['port'] == 9090 and s['address'] == '' and s['max_message_size'] is None
+    assert s['topics_glob'] == ['*'] and s['unregister_timeout'] == 10.0
+    assert s['fragment_timeout'] == 600 and s['delay_between_messages'] == 0
+    assert settings.protocol_settings(s)['max_message_size'] == 10 * 1024 * 1024
+
+
+def test_glob_lists():
+    assert settings.parse_glob("['/turtle1/*', '/rosout']", 'topics_glob') == \
+        ['/turtle1/*', '/rosout']
+    assert settings.parse_glob('[]', 'x') == [] and settings.parse_glob('', 'x') == []
+
+
+@pytest.mark.parametrize('name,value,needle', [
+    ('port', 'abc', '~port: expected an integer'),
+    ('port', 70000, '~port: expected 0..65535'),
+    ('fragment_timeout', -1, '~fragment_timeout: must not be negative'),
+    ('max_message_size', 0, '~max_message_size: must be positive'),
+    ('topics_glob', 5, '~topics_glob: expected a list of globs'),
+])
+def test_bad_parameters_name_themselves(name, value, needle):
+    with pytest.raises(settings.SettingsError) as e:
+        settings.read(lambda n, d: value if n == name else d)
+    assert needle in str(e.value)
