@@ -32,11 +32,17 @@ const topicCache = new WeakMap();   // ros -> {at, promise}
 export function topicTypes(ros) {
   const c = topicCache.get(ros);
   if (c && performance.now() - c.at < 1000) return c.promise;
-  const promise = new Promise((resolve, reject) => ros.getTopics(r => {
-    const out = {};
-    r.topics.forEach((t, i) => { out[t] = r.types[i]; });
-    resolve(out);
-  }, reject));
+  // an answer that never comes (a call lost while rosbridge or rosapi restarts) must not
+  // stop the panels' polling loops: give up after 5 s
+  const promise = new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error('/rosapi/topics: no answer in 5 s')), 5000);
+    ros.getTopics(r => {
+      clearTimeout(timer);
+      const out = {};
+      r.topics.forEach((t, i) => { out[t] = r.types[i]; });
+      resolve(out);
+    }, e => { clearTimeout(timer); reject(e); });
+  });
   promise.catch(() => topicCache.delete(ros));
   topicCache.set(ros, { at: performance.now(), promise });
   return promise;
@@ -44,7 +50,10 @@ export function topicTypes(ros) {
 
 export function callService(ros, name, type, args) {
   const s = new ROSLIB.Service({ ros, name, serviceType: type });
-  return new Promise((resolve, reject) => s.callService(new ROSLIB.ServiceRequest(args), resolve, reject));
+  return new Promise((resolve, reject) => {
+    const timer = setTimeout(() => reject(new Error(`${name}: no answer in 10 s`)), 10000);
+    s.callService(new ROSLIB.ServiceRequest(args), r => { clearTimeout(timer); resolve(r); }, e => { clearTimeout(timer); reject(e); });
+  });
 }
 
 // a value of a message by a path like "pose/position/x" or "ranges/0" or "data[2]"
@@ -60,7 +69,7 @@ export function fieldValue(msg, path) {
 // repeat fn every ms (first call now) until the returned stop function is called
 export function every(ms, fn) {
   let stopped = false;
-  const tick = async () => { if (stopped) return; try { await fn(); } catch (e) { /* next tick */ } if (!stopped) timer = setTimeout(tick, ms); };
+  const tick = async () => { if (stopped) return; try { await fn(); } catch (e) { console.warn('course_web:', e); } if (!stopped) timer = setTimeout(tick, ms); };
   let timer = setTimeout(tick, 0);
   return () => { stopped = true; clearTimeout(timer); };
 }

@@ -55,8 +55,8 @@ export default {
       const cols = [];
       for (const [k, r] of rank) (cols[r] = cols[r] || []).push(k);
       const pos = new Map(), W = 170, H = 34;
-      cols.forEach((c, x) => (c || []).sort().forEach((k, y) => pos.set(k, [20 + x * W, 20 + y * H])));
-      const width = 40 + cols.length * W, height = 40 + Math.max(1, ...cols.map(c => (c || []).length)) * H;
+      Array.from(cols, c => c || []).forEach((c, x) => c.sort().forEach((k, y) => pos.set(k, [20 + x * W, 20 + y * H])));
+      const width = 40 + cols.length * W, height = 40 + Math.max(1, ...Array.from(cols, c => (c || []).length)) * H;
       const svg = svgEl('svg', { width, height, class: 'graph-svg' });
       const defs = svgEl('defs');
       const marker = svgEl('marker', { id: 'arrow', viewBox: '0 0 10 10', refX: 10, refY: 5, markerWidth: 6, markerHeight: 6, orient: 'auto' });
