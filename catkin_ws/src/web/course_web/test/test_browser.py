@@ -1,0 +1,221 @@
+"""The page in headless Chromium (Debian's chromium + chromedriver, driven by Debian's
+python3-selenium) against one launch (test/browser.launch: web.launch with rosbridge,
+turtlesim, the space scanner in the office): the turtlesim panel draws the turtle and its
+trail after a Twist, the arrow keys and the teleop pad move the turtle, the plot panel draws a
+line, the 3D panel shows the simulated robot and its laser scan (pixels of screenshots)."""
+import io
+import os
+import socket
+import time
+import urllib.request
+
+import numpy as np
+import pytest
+
+from course_testing import Proc, RosCore, free_port, wait_for
+from course_testing import sim_testing as T
+from PIL import Image
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+PEN = np.array([179, 184, 255])          # turtlesim's default pen colour
+BACKGROUND = np.array([69, 86, 255])     # turtlesim's default background
+PLOT_BLUE = np.array([31, 119, 255])     # the plot's first series (#1f77ff)
+LAYOUT = {'version': 1, 'panels': [
+    {'type': 'turtlesim', 'x': 0, 'y': 0, 'w': 516, 'h': 570},
+    {'type': 'teleop', 'x': 520, 'y': 0, 'w': 300, 'h': 300, 'opts': {'topic': '/turtle1/cmd_vel'}},
+    {'type': 'plot', 'x': 520, 'y': 305, 'w': 520, 'h': 265, 'opts': {'fields': ['/turtle1/pose/x']}},
+]}
+# added by the 3D test only (software WebGL is the page's costliest part)
+VIEW3D = ({'x': 1045, 'y': 0, 'w': 600, 'h': 570}, {'fixed': 'odom', 'distance': 1.2})
+
+
+def _port_open(port):
+    with socket.socket() as s:
+        s.settimeout(0.5)
+        return s.connect_ex(('127.0.0.1', port)) == 0
+
+
+def _chrome(log_path):
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = '/usr/bin/chromium'
+    for a in ('--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--window-size=1700,1000',
+              '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--disable-extensions',
+              '--no-first-run', '--disable-background-networking'):
+        opts.add_argument(a)
+    opts.set_capability('goog:loggingPrefs', {'browser': 'ALL'})
+    return webdriver.Chrome(service=Service('/usr/bin/chromedriver', log_path=log_path), options=opts)
+
+
+class Stack:
+    def __init__(self, env, driver, launch, tmp):
+        self.env, self.driver, self.launch, self.tmp = env, driver, launch, tmp
+
+    def js(self, script, *args):
+        return self.driver.execute_script(script, *args)
+
+    def stats(self, kind):
+        for p in self.js('return courseWeb.panels()'):
+            if p['type'] == kind:
+                return p['stats']
+        raise AssertionError('no %s panel on the page' % kind)
+
+    def wait(self, predicate, what, timeout=60.0):
+        try:
+            return wait_for(predicate, timeout, 0.2, what)
+        except TimeoutError as e:
+            logs = [l['message'][:300] for l in self.driver.get_log('browser')][-15:]
+            raise AssertionError('%s\nbrowser console: %s\nlaunch log:\n%s'
+                                 % (e, '\n'.join(logs), self.launch.output()[-3000:]))
+
+    def shot(self, css, name):
+        """RGB array of the element's screenshot (also kept as NAME.png in the test's tmp dir)."""
+        png = self.driver.find_element('css selector', css).screenshot_as_png
+        with open(os.path.join(self.tmp, name + '.png'), 'wb') as f:
+            f.write(png)
+        return np.asarray(Image.open(io.BytesIO(png)).convert('RGB'))
+
+    def pose(self, turtle='turtle1'):
+        """The turtle's last /turtle1/pose as the page received it (x, y)."""
+        p = self.stats('turtlesim')['poses'].get(turtle) or {}
+        return p.get('x', float('nan')), p.get('y', float('nan'))
+
+    def still_pose(self, turtle='turtle1'):
+        """The turtle's pose once it has stopped (turtlesim stops 1 s after the last command)."""
+        def still():
+            p = self.stats('turtlesim')['poses'].get(turtle) or {}
+            return p and p['linear_velocity'] == 0 and p['angular_velocity'] == 0 and (p['x'], p['y'])
+        return self.wait(still, '%s to stand still' % turtle, timeout=30)
+
+    def teleport(self, x, y, theta, turtle='turtle1'):
+        """/turtle1/teleport_absolute called from the browser (rosbridge call_service): room
+        to move, away from the walls."""
+        self.still_pose(turtle)   # a command still running would carry it off the spot
+        ok = self.driver.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "new ROSLIB.Service({ros: courseWeb.ros(), name: '/' + arguments[0] + '/teleport_absolute',"
+            " serviceType: 'turtlesim/TeleportAbsolute'}).callService({x: arguments[1], y: arguments[2], theta: arguments[3]},"
+            " () => done(true), e => done(String(e)));", turtle, x, y, theta)
+        assert ok is True, 'teleport_absolute through rosbridge failed: %s' % ok
+        return self.wait(lambda: np.hypot(*np.subtract(self.pose(turtle), (x, y))) < 0.05,
+                         '%s at (%.1f, %.1f) after the teleport' % (turtle, x, y), timeout=30)
+
+    def publish_twist(self, topic, vx, wz, times=10):
+        """Twists from the browser through rosbridge (roslibjs), as any web client sends them:
+        10 at 10 Hz (a new ROS publisher's first messages may go out before the subscriber is
+        connected, so rostopic pub -1 waits; a stream does not need to)."""
+        self.js("const t = new ROSLIB.Topic({ros: courseWeb.ros(), name: arguments[0], messageType: 'geometry_msgs/Twist'});"
+                "let n = 0; const id = setInterval(() => {"
+                " t.publish({linear: {x: arguments[1], y: 0, z: 0}, angular: {x: 0, y: 0, z: arguments[2]}});"
+                " if (++n >= arguments[3]) clearInterval(id); }, 100);", topic, vx, wz, times)
+
+
+def _near(img, rgb, tol=12):
+    return int((np.abs(img.astype(int) - rgb).max(axis=2) <= tol).sum())
+
+
+@pytest.fixture(scope='module')
+def stack(tmp_path_factory):
+    tmp = str(tmp_path_factory.mktemp('course_web'))
+    core = RosCore(log_dir=os.path.join(tmp, 'ros_log')).start()
+    driver = launch = None
+    try:
+        env = T.ros_env(core)
+        web, bridge = free_port(), free_port()
+        launch = Proc(['roslaunch', os.path.join(HERE, 'browser.launch'), 'port:=%d' % web,
+                       'rosbridge_port:=%d' % bridge], env=env, log=os.path.join(tmp, 'launch.log'))
+
+        def up():
+            assert launch.alive(), 'browser.launch exited:\n' + launch.output()[-3000:]
+            return _port_open(web) and _port_open(bridge)
+        wait_for(up, 90, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
+        with urllib.request.urlopen('http://127.0.0.1:%d/vendor/roslib.min.js' % web, timeout=10) as r:
+            assert r.status == 200, 'www/vendor is missing: run scripts/install_js.sh'
+        driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
+        driver.set_script_timeout(30)
+        driver.get('http://127.0.0.1:%d/?layout=empty' % web)
+        s = Stack(env, driver, launch, tmp)
+        s.wait(lambda: s.js('return window.courseWeb && courseWeb.connected()'), 'the page to connect to rosbridge')
+        s.js('courseWeb.setLayout(arguments[0])', LAYOUT)
+        yield s
+    finally:
+        if driver:
+            driver.quit()
+        if launch:
+            launch.stop()
+        core.stop()
+
+
+def test_turtlesim_panel_draws_turtle_and_trail(stack):
+    s = stack
+    s.wait(lambda: (s.stats('turtlesim')['poses'].get('turtle1') or {}).get('x'), 'turtle1 in the turtlesim panel')
+    img = s.shot('.turtlesim-canvas', 'turtlesim_before')
+    assert _near(img, BACKGROUND) > 0.9 * 500 * 500, 'the background is not turtlesim\'s default colour'
+    turtle_px = img.size // 3 - _near(img, BACKGROUND)
+    assert turtle_px > 150, 'no turtle drawn (%d pixels differ from the background)' % turtle_px
+    assert _near(img, PEN) < 20, 'a trail before the turtle moved'
+    s.publish_twist('/turtle1/cmd_vel', 1.0, 0.6)
+    s.wait(lambda: _near(s.shot('.turtlesim-canvas', 'turtlesim_trail'), PEN, 20) > 80,
+           'the pen trail (>80 pixels of rgb%s) after a Twist' % (tuple(PEN),), timeout=30)
+
+
+def test_arrow_keys_move_the_turtle(stack):
+    from selenium.webdriver.common.keys import Keys
+    s = stack
+    s.teleport(3.0, 5.5, 0.0)
+    x0, y0 = s.still_pose()
+    canvas = s.driver.find_element('css selector', '.turtlesim-canvas')
+    canvas.click()
+    for _ in range(3):
+        canvas.send_keys(Keys.ARROW_UP)
+    s.wait(lambda: abs(np.hypot(*np.subtract(s.pose(), (x0, y0)))) > 0.5,
+           'turtle1 to move after the up arrow (turtle_teleop_key)', timeout=30)
+
+
+def test_teleop_pad_moves_the_turtle(stack):
+    from selenium.webdriver.common.action_chains import ActionChains
+    s = stack
+    s.teleport(3.0, 5.5, 0.0)
+    x0, y0 = s.still_pose()
+    fwd = s.driver.find_element('css selector', '.teleop-forward')
+    ActionChains(s.driver).click_and_hold(fwd).pause(1.5).release().perform()
+    s.wait(lambda: abs(np.hypot(*np.subtract(s.pose(), (x0, y0)))) > 0.5,
+           'turtle1 to move after holding the teleop pad\'s forward button', timeout=30)
+    s.wait(lambda: not s.stats('teleop')['moving'], 'the pad to stop publishing after release')
+
+
+def test_plot_panel_draws_a_line(stack):
+    s = stack
+    s.wait(lambda: s.stats('plot')['series'] and s.stats('plot')['series'][0]['points'] > 5,
+           'points of /turtle1/pose/x in the plot')
+    px = s.wait(lambda: _near(s.shot('.plot-canvas', 'plot'), PLOT_BLUE, 30), 'the plot line', timeout=20)
+    assert px > 100, 'the plot line has only %d pixels' % px
+
+
+def test_3d_panel_shows_robot_and_scan(stack):
+    s = stack
+    s.js('courseWeb.addPanel("view3d", arguments[0], arguments[1])', *VIEW3D)
+    s.wait(lambda: s.stats('view3d')['visibleLinks'] >= 5, 'the robot model placed by TF in the 3D panel', timeout=90)
+    s.wait(lambda: ((s.stats('view3d')['displays'].get('/scan') or {}).get('count') or 0) > 100,
+           'the laser scan (/scan) in the 3D panel', timeout=60)
+    time.sleep(0.5)   # a frame or two after the last update
+    red = lambda img: int(((img[:, :, 0] > 235) & (img[:, :, 1] < 40) & (img[:, :, 2] < 40)).sum())
+    with_all = s.shot('.view3d-canvas', 'view3d')
+    # the scan: red points that go away when its display is switched off
+    s.js("document.querySelectorAll('.view3d-displays label').forEach(l => {"
+         " if (l.textContent.startsWith('/scan ')) l.querySelector('input').click(); })")
+    time.sleep(0.5)
+    no_scan = s.shot('.view3d-canvas', 'view3d_no_scan')
+    assert red(with_all) - red(no_scan) > 100, 'laser points: %d red pixels with the scan, %d without' % (
+        red(with_all), red(no_scan))
+    # the robot: the middle of the view (the camera follows base_footprint) changes without it
+    s.js("document.querySelector('.panel[data-type=view3d] input[type=checkbox]:nth-of-type(1)');"
+         "[...document.querySelectorAll('.panel[data-type=view3d] label')].find(l => l.textContent.includes('robot model'))"
+         ".querySelector('input').click()")
+    time.sleep(0.5)
+    no_robot = s.shot('.view3d-canvas', 'view3d_no_robot')
+    h, w = no_robot.shape[:2]
+    mid = (slice(h // 4, 3 * h // 4), slice(w // 4, 3 * w // 4))
+    diff = int((np.abs(no_scan[mid].astype(int) - no_robot[mid]).max(axis=2) > 40).sum())
+    assert diff > 500, 'the robot model covers only %d pixels of the view\'s middle' % diff
