@@ -55,7 +55,8 @@ def main():
     goal.target_pose.pose.orientation.w = 1.0
     client.send_goal(goal)
     emit(kind='sent', goal=[gx, gy])
-    wait(lambda: client.get_state() not in (0, 1), 'move_base to finish the goal')  # PENDING, ACTIVE
+    # PENDING, ACTIVE
+    wait(lambda: client.get_state() not in (0, 1), 'move_base to finish the goal')
     p = truth(model_name='robot').pose.position
     a = got['amcl'].pose.pose.position
     emit(kind='result', state=client.get_state(), text=client.get_goal_status_text(),

@@ -171,7 +171,8 @@ def test_navigation_rviz_shows_map_scan_plan(rviz_env, screen, tmp_path):
                        'rviz:=true'], env=rviz_env, log=str(tmp_path / 'launch.log'))
         procs.append(launch)
         driver = Proc(['/usr/bin/python3', os.path.join(HERE, 'check_navigation_rviz_driver.py'),
-                       str(GOAL[0]), str(GOAL[1]), str(flag)], env=dict(rviz_env, PYTHONUNBUFFERED='1'),
+                       str(GOAL[0]), str(GOAL[1]), str(flag)],
+                      env=dict(rviz_env, PYTHONUNBUFFERED='1'),
                       log=str(tmp_path / 'driver.log'))
         procs.append(driver)
 
@@ -183,7 +184,8 @@ def test_navigation_rviz_shows_map_scan_plan(rviz_env, screen, tmp_path):
             assert driver.alive() or any(e['kind'] == 'result' for e in events(driver)), \
                 'the goal driver exited:\n' + driver.output()[-3000:]
             return any(e['kind'] in ('result', 'error') for e in events(driver))
-        wait_for(lambda: plans() or finished(), 240, 0.5, 'a global plan on /move_base/NavfnROS/plan')
+        wait_for(lambda: plans() or finished(), 240, 0.5,
+                 'a global plan on /move_base/NavfnROS/plan')
         assert plans(), 'no global plan:\n%s\nlaunch log tail:\n%s' % (
             driver.output()[-2000:], launch.output()[-3000:])
         # screenshots while the robot drives: RViz draws the latest plan, scan and map
