@@ -385,19 +385,21 @@ class TrajectoryPlanner:
             tr, i = best[4], best[5]
             pts = np.stack([tr.x[i], tr.y[i], tr.th[i]], axis=1)
             return bvx, bvy, bvth, best[3], pts
-        # escape: back up slowly
+        # nothing legal: back up slowly, even when the map shows it as blocked (the original:
+        # a footprint already touching an obstacle makes every trajectory illegal, -1); only
+        # a backward trajectory with no route to the plan (-2) fails
         tr = self.simulate(x, y, th, vx, vy, vth, [[p.escape_vel, 0.0, 0.0]])
-        self.resolve(tr, 0)
-        if tr.cost[0] >= 0 or self.escaping is False:
-            if not self.escaping:
-                self.escaping = True
-                self.escape_x, self.escape_y, self.escape_theta = x, y, th
-            pts = np.stack([tr.x[0], tr.y[0], tr.th[0]], axis=1)
-            if tr.cost[0] >= 0:
-                self._check_escape(x, y, th)
-                return p.escape_vel, 0.0, 0.0, tr.cost[0], pts
+        cost = float(tr.cost[0])
+        if not self.escaping and cost > -2.0:
+            self.escaping = True
+            self.escape_x, self.escape_y, self.escape_theta = x, y, th
         self._check_escape(x, y, th)
-        return 0.0, 0.0, 0.0, -1.0, np.zeros((0, 3))
+        if cost == -1.0:
+            cost = 1.0
+        if cost < 0:
+            return 0.0, 0.0, 0.0, cost, np.zeros((0, 3))
+        pts = np.stack([tr.x[0], tr.y[0], tr.th[0]], axis=1)
+        return p.escape_vel, 0.0, 0.0, cost, pts
 
     def _check_escape(self, x, y, th):
         p = self.p
