@@ -8,7 +8,8 @@
 extern "C" {
 
 // blocked: nx*ny bytes (non-zero = obstacle); seeds: cell indices; out: nx*ny distances.
-// Unreached cells get unreachable, blocked cells obstacle_value.
+// Unreached cells get unreachable, blocked cells obstacle_value; a seed is 0 even when it is
+// blocked (plan cells are targets whatever their cost, as MapGrid::setTargetCells).
 void blp_wavefront(const uint8_t* blocked, int nx, int ny, const int32_t* seeds, int nseeds,
                    int64_t obstacle_value, int64_t unreachable, int64_t* out)
 {
@@ -20,7 +21,7 @@ void blp_wavefront(const uint8_t* blocked, int nx, int ny, const int32_t* seeds,
   }
   for (int k = 0; k < nseeds; ++k) {
     const int32_t s = seeds[k];
-    if (s < 0 || s >= n || blocked[s] || out[s] == 0) {
+    if (s < 0 || s >= n || out[s] == 0) {
       continue;
     }
     out[s] = 0;

@@ -96,3 +96,48 @@ def test_native_wavefront_matches_the_python_one():
     a, ia = wavefront(g, seeds, native=True)
     b, ib = wavefront(g, seeds, native=False)
     assert ia == ib and np.array_equal(a, b)
+
+
+def test_footprint_costs_as_costmap_model():
+    from base_local_planner import native
+    g = free_grid(40, 0.05)
+    fp = np.array(FOOTPRINT)
+    xs, ys, ths = np.array([[1.0]]), np.array([[1.0]]), np.array([[0.0]])
+
+    def cost():
+        return native.footprint_costs(g.data, 0.0, 0.0, 0.05, fp, xs, ys, ths)[0]
+    assert cost() == 0.0
+    # the right edge x = 1.09 runs through cell column 21: cost 100 there is the pose's cost
+    g.data[20, 21] = 100
+    assert cost() == 100.0
+    g.data[20, 21] = 254                   # lethal on the outline
+    assert cost() == -1.0
+    g.data[20, 21] = 255                   # unknown on the outline
+    assert cost() == -1.0
+    g.data[20, 21] = 0
+    g.data[20, 20] = 254                   # inside the polygon only: the outline is checked
+    assert cost() == 0.0
+    xs[0, 0] = 1.95                        # a vertex off the map
+    assert cost() == -1.0
+    # a circular robot (< 3 points): the centre cell, inscribed illegal too
+    g.data[20, 20] = 253
+    assert native.footprint_costs(g.data, 0.0, 0.0, 0.05, np.zeros((0, 2)),
+                                  np.array([[1.0]]), ys, ths)[0] == -1.0
+
+
+def test_cells_under_the_robot_do_not_block_the_wavefront():
+    g = free_grid(40, 0.05)
+    g.data[18:23, 18:23] = 253             # inscribed cells around the robot at (1.0, 1.0)
+    tp = TrajectoryPlanner(TrajectoryParams(), FOOTPRINT)
+    tp.update_plan(g, [(0.2, 0.2), (0.2, 1.8)])
+    assert tp.path_map[20, 20] == 40 * 40          # an obstacle to the wavefront
+    tp.update_plan(g, [(0.2, 0.2), (0.2, 1.8)], robot_pose=(1.0, 1.0, 0.0))
+    assert tp.path_map[20, 20] == 16               # 16 cells from the path at x = 0.2
+
+
+def test_plan_cells_are_targets_whatever_their_cost():
+    g = free_grid(10, 1.0)
+    g.data[5, 5] = 253                     # a plan cell in an inscribed cell
+    for native in (True, False):
+        d, _ = wavefront(g, [(5, 5)], native=native)
+        assert d[5, 5] == 0 and d[5, 6] == 1 and d[0, 0] == 10

@@ -182,3 +182,14 @@ def test_bad_costmap_params_name_the_parameter():
         observation_sources({'observation_sources': 'src', 'src': {'data_type': 'Sonar'}}, '/c')
     with pytest.raises(CostmapParamError, match='/c/missing is not set'):
         observation_sources({'observation_sources': 'missing'}, '/c')
+
+
+def test_convex_polygon_cells_cover_the_outline_as_the_original():
+    from costmap_2d.costmap import Costmap2D
+    cm = Costmap2D(40, 40, 0.05, 0.0, 0.0)
+    cm.data[:] = 254
+    # a footprint whose right edge x = 1.09 lies in column 21 (cell centre 1.075 is outside)
+    poly = [(0.91, 0.87), (0.91, 1.13), (1.09, 1.13), (1.09, 0.87)]
+    assert cm.set_convex_polygon_cost(poly, 0)
+    assert cm.data[20, 21] == 0 and cm.data[17, 18] == 0 and cm.data[22, 21] == 0
+    assert cm.data[20, 22] == 254 and cm.data[16, 20] == 254

@@ -3,17 +3,19 @@ MapGrid): no ROS imports.
 
 Every velocity sample is simulated forward for sim_time, all samples at once in NumPy. A
 trajectory is invalid (cost < 0) when the footprint outline touches a lethal or unknown cell
-at any step (-1) or a point has no obstacle-free route to the path or the goal (-2);
-otherwise its cost is
-    pdist_scale * path_dist(end) + gdist_scale * goal_dist(end) + occdist_scale * max_cost
+at any step (-1; CostmapModel::footprintCost, compiled: src_cpp/footprint_cost.cpp) or a
+point has no obstacle-free route to the path or the goal (-2); otherwise its cost is
+    pdist_scale * path_dist(end) + gdist_scale * goal_dist(end) + occdist_scale * occ_cost
 with the distances of the last point (in cells, or metres with meter_scoring) taken from
-MapGrid wavefronts over the local costmap, as the original.
+MapGrid wavefronts over the local costmap (the cells under the robot's footprint passable),
+and occ_cost the highest cost under the centre or the footprint outline along the way, as
+the original.
 """
 import math
 from collections import deque
 
 import numpy as np
-from scipy import ndimage, sparse
+from scipy import sparse
 from scipy.sparse import csgraph
 
 LETHAL_OBSTACLE = 254
@@ -80,10 +82,12 @@ class GridGraph:
     """The 4-connected graph of the non-obstacle cells of a grid (obstacles: lethal,
     inscribed, unknown), for MapGrid wavefronts."""
 
-    def __init__(self, grid):
+    def __init__(self, grid, open_cells=None):
         ny, nx = grid.data.shape
         self.shape = (ny, nx)
         self.blocked = grid.data >= INSCRIBED_INFLATED_OBSTACLE
+        if open_cells is not None:
+            self.blocked &= ~open_cells
         free = ~self.blocked
         idx = np.arange(nx * ny).reshape(ny, nx)
         h = free[:, :-1] & free[:, 1:]
@@ -94,20 +98,28 @@ class GridGraph:
                                        shape=(nx * ny, nx * ny))
 
 
-def wavefront(grid, seeds, graph=None, native=True):
+def wavefront(grid, seeds, graph=None, native=True, within_robot=None):
     """MapGrid::computeTargetDistance: 4-connected distance (cells) from the seed cells
-    around obstacles (lethal, inscribed, unknown). Unreached cells get the impossible value
-    nx * ny + 1 (obstacles: nx * ny)."""
+    (targets whatever their cost) around obstacles (lethal, inscribed, unknown; not the cells
+    within_robot, bool [ny, nx]: under the robot's footprint). Unreached cells get the
+    impossible value nx * ny + 1 (obstacles: nx * ny)."""
     ny, nx = grid.data.shape
     obstacle_value = nx * ny
     unreachable = nx * ny + 1
     if native:
         from . import native as _native
         blocked = grid.data >= INSCRIBED_INFLATED_OBSTACLE
+        if within_robot is not None:
+            blocked &= ~within_robot
         return _native.wavefront(blocked, (y * nx + x for x, y in seeds), obstacle_value,
                                  unreachable), obstacle_value
-    graph = graph or GridGraph(grid)
-    src = [y * nx + x for x, y in seeds if not graph.blocked[y, x]]
+    seed_mask = np.zeros((ny, nx), dtype=bool)
+    for x, y in seeds:
+        seed_mask[y, x] = True
+    if within_robot is not None:
+        seed_mask |= within_robot
+    graph = graph or GridGraph(grid, seed_mask)
+    src = [y * nx + x for x, y in seeds]
     if not src:
         d = np.full((ny, nx), unreachable, dtype=np.int64)
     else:
@@ -140,6 +152,44 @@ def plan_cells(grid, plan_xy):
     keep = np.ones(len(fx), dtype=bool)
     keep[1:] = (fx[1:] != fx[:-1]) | (fy[1:] != fy[:-1])
     return list(zip(fx[keep].tolist(), fy[keep].tolist()))
+
+
+def footprint_cells(grid, footprint, x, y, th):
+    """bool [ny, nx]: the cells under the footprint polygon at pose (x, y, th), outline
+    included (FootprintHelper::getFootprintCells with fill)."""
+    mask = np.zeros(grid.data.shape, dtype=bool)
+    fp = np.asarray(footprint, dtype=float).reshape(-1, 2)
+    if len(fp) < 3:
+        cx, cy, inside = grid.cells(np.array([x]), np.array([y]))
+        if inside[0]:
+            mask[cy[0], cx[0]] = True
+        return mask
+    c, s = math.cos(th), math.sin(th)
+    px = x + fp[:, 0] * c - fp[:, 1] * s
+    py = y + fp[:, 0] * s + fp[:, 1] * c
+    res = grid.resolution
+    x0 = max(int(math.floor((px.min() - grid.origin_x) / res)), 0)
+    x1 = min(int(math.floor((px.max() - grid.origin_x) / res)), grid.nx - 1)
+    y0 = max(int(math.floor((py.min() - grid.origin_y) / res)), 0)
+    y1 = min(int(math.floor((py.max() - grid.origin_y) / res)), grid.ny - 1)
+    if x0 > x1 or y0 > y1:
+        return mask
+    gy, gx = np.mgrid[y0:y1 + 1, x0:x1 + 1]
+    wx = grid.origin_x + (gx + 0.5) * res
+    wy = grid.origin_y + (gy + 0.5) * res
+    inside = np.ones(wx.shape, dtype=bool)
+    # a convex polygon: inside every edge, on the side its orientation (signed area) says
+    sign = 1.0 if np.sum(px * np.roll(py, -1) - np.roll(px, -1) * py) >= 0 else -1.0
+    for i in range(len(px)):
+        ax, ay, bx, by = px[i], py[i], px[(i + 1) % len(px)], py[(i + 1) % len(px)]
+        inside &= ((bx - ax) * (wy - ay) - (by - ay) * (wx - ax)) * sign >= 0
+    mask[y0:y1 + 1, x0:x1 + 1] = inside
+    ol = footprint_outline(fp, res * 0.5)
+    ox = x + ol[:, 0] * c - ol[:, 1] * s
+    oy = y + ol[:, 0] * s + ol[:, 1] * c
+    cx, cy, ins = grid.cells(ox, oy)
+    mask[cy[ins], cx[ins]] = True
+    return mask
 
 
 def footprint_outline(footprint, step):
@@ -179,33 +229,26 @@ class TrajectoryPlanner:
         self.prev_x = self.prev_y = 0.0
         self.escape_x = self.escape_y = self.escape_theta = 0.0
         self.final_goal = None
-        self.near_hazard = None
 
     # ---- maps --------------------------------------------------------------------------
-    def update_plan(self, grid, plan_xy):
-        """The local costmap snapshot and the (local-frame) plan as (x, y) pairs."""
+    def update_plan(self, grid, plan_xy, robot_pose=None):
+        """The local costmap snapshot and the (local-frame) plan as (x, y) pairs; the cells
+        under the footprint at robot_pose (x, y, th) do not block the wavefronts (the
+        original's within_robot cells)."""
         self.grid = grid
         cells = plan_cells(grid, plan_xy)
-        self.path_map, self.impossible = wavefront(grid, cells)
+        within = None
+        if robot_pose is not None:
+            within = footprint_cells(grid, self.footprint, *robot_pose)
+        self.path_map, self.impossible = wavefront(grid, cells, within_robot=within)
         # the local goal: the last plan cell inside the local map
-        self.goal_map, _ = wavefront(grid, cells[-1:] if cells else [])
-        # cells from which the footprint may reach a lethal or unknown cell: only trajectories
-        # through them need the exact footprint check
-        hazard = (grid.data == LETHAL_OBSTACLE) | (grid.data == NO_INFORMATION)
-        if hazard.any() and len(self.footprint) >= 3:
-            radius = max(math.hypot(px, py) for px, py in self.footprint)
-            dist = ndimage.distance_transform_edt(~hazard) * grid.resolution
-            self.near_hazard = dist <= radius + grid.resolution * 1.5
-        else:
-            self.near_hazard = hazard
+        self.goal_map, _ = wavefront(grid, cells[-1:] if cells else [], within_robot=within)
         if len(plan_xy):
             self.final_goal = tuple(plan_xy[-1])
 
     # ---- simulation --------------------------------------------------------------------
     def simulate(self, x, y, th, vx0, vy0, vth0, samples):
-        """samples: (N, 3) target velocities. Returns Trajectories with cost filled: the
-        cheap terms for all, the exact footprint check only where a trajectory passes near
-        a lethal or unknown cell (resolve() settles those)."""
+        """samples: (N, 3) target velocities. Returns Trajectories with cost filled."""
         p = self.p
         samples = np.asarray(samples, dtype=float).reshape(-1, 3)
         svx, svy, svth = samples[:, 0], samples[:, 1], samples[:, 2]
@@ -247,11 +290,15 @@ class TrajectoryPlanner:
         px, py, pin = g.cells(xs, ys)
         pxc, pyc = np.where(pin, px, 0), np.where(pin, py, 0)
         center = np.where(pin, g.data[pyc, pxc], NO_INFORMATION).astype(np.int64)
-        illegal = ~pin.all(axis=1) | ((center == LETHAL_OBSTACLE) |
-                                      (center == NO_INFORMATION)).any(axis=1)
+        from . import native as _native
+        fp_cost = _native.footprint_costs(g.data, g.origin_x, g.origin_y, g.resolution,
+                                          np.asarray(self.footprint, dtype=float).reshape(-1, 2),
+                                          xs, ys, tr.th)
+        illegal = ~pin.all(axis=1) | (fp_cost < 0) | ((center == LETHAL_OBSTACLE) |
+                                                     (center == NO_INFORMATION)).any(axis=1)
         if len(self.footprint) < 3:
             illegal |= (center == INSCRIBED_INFLATED_OBSTACLE).any(axis=1)
-        occ = np.where(center == NO_INFORMATION, 0, center).max(axis=1)
+        occ = np.maximum(np.where(center == NO_INFORMATION, 0, center).max(axis=1), fp_cost)
         pd = np.where(pin, self.path_map[pyc, pxc], self.impossible)
         gd = np.where(pin, self.goal_map[pyc, pxc], self.impossible)
         impossible = ((pd >= self.impossible) | (gd >= self.impossible)).any(axis=1)
@@ -261,44 +308,17 @@ class TrajectoryPlanner:
         cost = np.where(impossible, -2.0, cost)
         cost = np.where(illegal, -1.0, cost)
         tr.cost = cost
-        # exact footprint check pending where the centre passes near a hazard
-        near = np.where(pin, self.near_hazard[pyc, pxc], True).any(axis=1)
-        tr.pending = near & (cost >= 0) & (len(self.footprint) >= 3)
-
-    def footprint_legal(self, tr, i):
-        """The original's footprint check for trajectory i: the outline touches no lethal or
-        unknown cell at any point. Also raises the occupancy term to the outline's maximum."""
-        g = self.grid
-        outline = footprint_outline(self.footprint, g.resolution * 0.5)
-        c, s = np.cos(tr.th[i])[:, None], np.sin(tr.th[i])[:, None]
-        fx = tr.x[i][:, None] + outline[:, 0] * c - outline[:, 1] * s
-        fy = tr.y[i][:, None] + outline[:, 0] * s + outline[:, 1] * c
-        cx, cy, inside = g.cells(fx, fy)
-        if not inside.all():
-            return False
-        vals = g.data[cy, cx]
-        return not ((vals == LETHAL_OBSTACLE) | (vals == NO_INFORMATION)).any()
 
     def resolve(self, tr, i):
-        """Settle trajectory i's pending footprint check; True when it is valid."""
-        if tr.cost[i] < 0:
-            return False
-        if tr.pending[i]:
-            tr.pending[i] = False
-            if not self.footprint_legal(tr, i):
-                tr.cost[i] = -1.0
-                return False
-        return True
+        """True when trajectory i is valid."""
+        return bool(tr.cost[i] >= 0)
 
     def best_index(self, tr):
-        """The lowest-cost valid trajectory (exact footprint checks in cost order) or None."""
-        order = np.argsort(np.where(tr.cost >= 0, tr.cost, np.inf), kind='stable')
-        for i in order:
-            if tr.cost[i] < 0:
-                return None
-            if self.resolve(tr, int(i)):
-                return int(i)
-        return None
+        """The first lowest-cost valid trajectory in sampling order, or None."""
+        valid = tr.cost >= 0
+        if not valid.any():
+            return None
+        return int(np.argmin(np.where(valid, tr.cost, np.inf)))
 
     # ---- the choice ----------------------------------------------------------------------
     def find_best_path(self, x, y, th, vx, vy, vth):
@@ -325,7 +345,9 @@ class TrajectoryPlanner:
         dvth = (max_vth - min_vth) / max(nvth - 1, 1)
         best = None
         if not self.escaping:
-            gv, gt = np.meshgrid(vxs, vths, indexing='ij')
+            # per vx (min .. max): straight first, then vtheta from min_vth in nvth - 1 steps
+            vth_row = np.concatenate([[0.0], min_vth + dvth * np.arange(nvth - 1)])
+            gv, gt = np.meshgrid(vxs, vth_row, indexing='ij')
             fwd = np.stack([gv.ravel(), np.zeros(gv.size), gt.ravel()], axis=1)
             tr = self.simulate(x, y, th, vx, vy, vth, fwd)
             i = self.best_index(tr)
@@ -363,19 +385,21 @@ class TrajectoryPlanner:
             tr, i = best[4], best[5]
             pts = np.stack([tr.x[i], tr.y[i], tr.th[i]], axis=1)
             return bvx, bvy, bvth, best[3], pts
-        # escape: back up slowly
+        # nothing legal: back up slowly, even when the map shows it as blocked (the original:
+        # a footprint already touching an obstacle makes every trajectory illegal, -1); only
+        # a backward trajectory with no route to the plan (-2) fails
         tr = self.simulate(x, y, th, vx, vy, vth, [[p.escape_vel, 0.0, 0.0]])
-        self.resolve(tr, 0)
-        if tr.cost[0] >= 0 or self.escaping is False:
-            if not self.escaping:
-                self.escaping = True
-                self.escape_x, self.escape_y, self.escape_theta = x, y, th
-            pts = np.stack([tr.x[0], tr.y[0], tr.th[0]], axis=1)
-            if tr.cost[0] >= 0:
-                self._check_escape(x, y, th)
-                return p.escape_vel, 0.0, 0.0, tr.cost[0], pts
+        cost = float(tr.cost[0])
+        if not self.escaping and cost > -2.0:
+            self.escaping = True
+            self.escape_x, self.escape_y, self.escape_theta = x, y, th
         self._check_escape(x, y, th)
-        return 0.0, 0.0, 0.0, -1.0, np.zeros((0, 3))
+        if cost == -1.0:
+            cost = 1.0
+        if cost < 0:
+            return 0.0, 0.0, 0.0, cost, np.zeros((0, 3))
+        pts = np.stack([tr.x[0], tr.y[0], tr.th[0]], axis=1)
+        return p.escape_vel, 0.0, 0.0, cost, pts
 
     def _check_escape(self, x, y, th):
         p = self.p

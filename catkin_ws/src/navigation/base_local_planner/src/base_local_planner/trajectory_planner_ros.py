@@ -198,7 +198,7 @@ class TrajectoryPlannerROS(BaseLocalPlanner):
                 self.xy_goal_tolerance:
             if self.latch_xy_goal_tolerance:
                 self.xy_tolerance_latch = True
-            self.planner.update_plan(grid, local[:, :2])
+            self.planner.update_plan(grid, local[:, :2], pose)
             ang = _angle(goal[2] - th)
             if abs(ang) <= self.yaw_goal_tolerance:
                 self.reached_goal = True
@@ -213,7 +213,7 @@ class TrajectoryPlannerROS(BaseLocalPlanner):
                 cmd = self._rotate_to_goal(pose, vel, goal[2])
             self._publish(local, np.zeros((0, 3)), lf)
             return cmd
-        self.planner.update_plan(grid, local[:, :2])
+        self.planner.update_plan(grid, local[:, :2], pose)
         vx, vy, vth, cost, pts = self.planner.find_best_path(x, y, th, *vel)
         self._publish(local, pts, lf)
         if cost < 0:

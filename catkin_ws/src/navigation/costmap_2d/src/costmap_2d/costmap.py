@@ -78,29 +78,30 @@ class Costmap2D:
         self.origin_y += cell_oy * self.resolution
 
     def polygon_cells(self, polygon):
-        """Cells (mx, my arrays) whose centres lie inside a world-frame polygon, plus its
-        outline cells (the original's convexFillCells)."""
+        """Cells (mx, my arrays) of a convex world-frame polygon as the original's
+        convexFillCells: the outline rasterized between the vertices' cells (Bresenham), then
+        every column filled between its lowest and highest outline cell. None when a vertex
+        is off the map."""
         poly = np.asarray(polygon, dtype=float)
         if len(poly) < 3:
             return np.zeros(0, int), np.zeros(0, int)
-        lo = poly.min(axis=0)
-        hi = poly.max(axis=0)
-        fx0, fy0, _ = self.world_to_map_array(lo[0], lo[1])
-        fx1, fy1, _ = self.world_to_map_array(hi[0], hi[1])
-        fx0, fy0 = max(int(fx0), 0), max(int(fy0), 0)
-        fx1, fy1 = min(int(fx1), self.size_x - 1), min(int(fy1), self.size_y - 1)
-        if fx0 > fx1 or fy0 > fy1:
+        vx, vy, inside = self.world_to_map_array(poly[:, 0], poly[:, 1])
+        if not inside.all():
             return np.zeros(0, int), np.zeros(0, int)
-        gx, gy = np.meshgrid(np.arange(fx0, fx1 + 1), np.arange(fy0, fy1 + 1))
-        gx, gy = gx.ravel(), gy.ravel()
-        cx = self.origin_x + (gx + 0.5) * self.resolution
-        cy = self.origin_y + (gy + 0.5) * self.resolution
-        inside = points_in_polygon(cx, cy, poly)
-        # the outline too, so a footprint smaller than a cell still covers its cell
-        ox, oy, om = self.world_to_map_array(poly[:, 0], poly[:, 1])
-        mx = np.concatenate([gx[inside], ox[om]])
-        my = np.concatenate([gy[inside], oy[om]])
-        return mx, my
+        xs, ys = [], []
+        n = len(poly)
+        for i in range(n):
+            lx, ly = bresenham(int(vx[i]), int(vy[i]), int(vx[(i + 1) % n]), int(vy[(i + 1) % n]))
+            xs.append(lx)
+            ys.append(ly)
+        ox, oy = np.concatenate(xs), np.concatenate(ys)
+        mx, my = [], []
+        for x in np.unique(ox):
+            col = oy[ox == x]
+            y0, y1 = int(col.min()), int(col.max())
+            mx.append(np.full(y1 - y0 + 1, x))
+            my.append(np.arange(y0, y1 + 1))
+        return np.concatenate(mx), np.concatenate(my)
 
     def set_convex_polygon_cost(self, polygon, cost):
         mx, my = self.polygon_cells(polygon)
@@ -108,20 +109,33 @@ class Costmap2D:
         return len(mx) > 0
 
 
-def points_in_polygon(px, py, poly):
-    """Even-odd rule, vectorised over the points."""
-    px = np.asarray(px, dtype=float)
-    py = np.asarray(py, dtype=float)
-    inside = np.zeros(px.shape, dtype=bool)
-    n = len(poly)
-    for i in range(n):
-        x1, y1 = poly[i]
-        x2, y2 = poly[(i + 1) % n]
-        cond = (y1 > py) != (y2 > py)
-        with np.errstate(divide='ignore', invalid='ignore'):
-            xint = (x2 - x1) * (py - y1) / (y2 - y1) + x1
-        inside ^= cond & (px < xint)
-    return inside
+def bresenham(x0, y0, x1, y1):
+    """The cells of the line from (x0, y0) to (x1, y1), both ends included (the original's
+    raytraceLine / LineIterator order)."""
+    dx, dy = abs(x1 - x0), abs(y1 - y0)
+    sx, sy = (1 if x1 >= x0 else -1), (1 if y1 >= y0 else -1)
+    n = max(dx, dy)
+    xs = np.empty(n + 1, dtype=int)
+    ys = np.empty(n + 1, dtype=int)
+    x, y = x0, y0
+    if dx >= dy:
+        num, den, add = dx // 2, dx, dy
+    else:
+        num, den, add = dy // 2, dy, dx
+    for k in range(n + 1):
+        xs[k], ys[k] = x, y
+        num += add
+        if dx >= dy:
+            if num >= den:
+                num -= den
+                y += sy
+            x += sx
+        else:
+            if num >= den:
+                num -= den
+                x += sx
+            y += sy
+    return xs, ys
 
 
 # ---- footprint (costmap_2d/footprint.cpp) ---------------------------------------------

@@ -30,31 +30,23 @@ class RotateRecovery(RecoveryBehavior):
         self.tolerance = float(rospy.get_param(bp + '/yaw_goal_tolerance', 0.10))
         self.vel_pub = rospy.Publisher('cmd_vel', Twist, queue_size=10)
 
-    def _arc_legal(self, x, y, th0, arc):
-        """True when the footprint outline touches no lethal or unknown cell at any angle
-        th0 .. th0 + arc, every sim_granularity (the original's footprintCost loop)."""
+    def _arc_cost(self, x, y, th0, arc):
+        """The worst footprintCost (base_local_planner's CostmapModel on the local costmap)
+        at the angles th0 .. th0 + arc every sim_granularity: -1 when the footprint would
+        touch a lethal or unknown cell or leave the map, as the original checks."""
         import numpy as np
+        from base_local_planner import native
         cm = self.local_costmap
+        angles = th0 + np.arange(0.0, max(arc, 0.0), self.sim_granularity)
+        if len(angles) == 0:
+            return 0.0
         with cm.lock:
             grid = cm.costmap
-            fp = np.asarray(cm.layered.footprint, dtype=float)
-            if len(fp) < 3:
-                fp = np.zeros((1, 2))
-            outline = []
-            for i in range(len(fp)):
-                a, b = fp[i], fp[(i + 1) % len(fp)]
-                n = max(1, int(np.ceil(np.hypot(*(b - a)) / (grid.resolution * 0.5))))
-                outline.extend(a + (b - a) * k / n for k in range(n))
-            outline = np.array(outline)
-            angles = th0 + np.arange(0.0, max(arc, 0.0) + 1e-9, self.sim_granularity)
-            c, s = np.cos(angles)[:, None], np.sin(angles)[:, None]
-            px = x + outline[:, 0] * c - outline[:, 1] * s
-            py = y + outline[:, 0] * s + outline[:, 1] * c
-            mx, my, inside = grid.world_to_map_array(px, py)
-            if not inside.all():
-                return False
-            vals = grid.data[my, mx]
-        return not ((vals == LETHAL) | (vals == NO_INFORMATION)).any()
+            fp = np.asarray(cm.layered.footprint, dtype=float).reshape(-1, 2)
+            costs = native.footprint_costs(grid.data, grid.origin_x, grid.origin_y,
+                                           grid.resolution, fp, np.full((len(angles), 1), x),
+                                           np.full((len(angles), 1), y), angles[:, None])
+        return float(-1.0 if (costs < 0).any() else costs.max())
 
     def run_behavior(self):
         rospy.logwarn('Rotate recovery behavior started.')
@@ -81,9 +73,10 @@ class RotateRecovery(RecoveryBehavior):
                     got_180 = True
             else:
                 dist_left = abs(sad(current_angle, start_angle))
-            if not self._arc_legal(pose[0], pose[1], current_angle, dist_left):
+            cost = self._arc_cost(pose[0], pose[1], current_angle, dist_left)
+            if cost < 0.0:
                 rospy.logerr('Rotate recovery can\'t rotate in place because there is a '
-                             'potential collision. Cost: -1.00')
+                             'potential collision. Cost: %.2f' % cost)
                 break
             vel = math.sqrt(2 * self.acc_lim_th * dist_left)
             vel = min(max(vel, self.min_rotational_vel), self.max_rotational_vel)
