@@ -16,6 +16,7 @@ from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import PoseWithCovarianceStamped
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from nav_msgs.msg import Path
+from std_srvs.srv import Empty
 
 WALL_TIMEOUT = 240.0
 
@@ -57,6 +58,12 @@ def main():
     emit(kind='sent', goal=[gx, gy])
     # PENDING, ACTIVE
     wait(lambda: client.get_state() not in (0, 1), 'move_base to finish the goal')
+    # amcl publishes a pose only after a filter update (every update_min_d of travel): at rest
+    # a no-motion update gives one for where the robot stands now
+    rospy.wait_for_service('/request_nomotion_update', WALL_TIMEOUT)
+    stamp = got['amcl'].header.stamp
+    rospy.ServiceProxy('/request_nomotion_update', Empty)()
+    wait(lambda: got['amcl'].header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
     p = truth(model_name='robot').pose.position
     a = got['amcl'].pose.pose.position
     emit(kind='result', state=client.get_state(), text=client.get_goal_status_text(),
