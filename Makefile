@@ -25,8 +25,9 @@ test-stress: setup
 test-class: setup
 	bash labs/test-class.sh
 
+# make demo web:=true also serves the course's web view (http://localhost:8080) for the demo
 demo: setup
-	bash scripts/demo.sh
+	bash scripts/demo.sh $(if $(filter true,$(web)),--web)
 
 # the previous demo: the lab-2 reference graded on turtlesim
 demo-lab2: setup

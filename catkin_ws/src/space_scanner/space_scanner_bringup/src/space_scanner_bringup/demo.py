@@ -10,7 +10,8 @@ navigates on the map it made.
    robot to a set of goals in every room.
 4. A summary table: map quality against the office's ground-truth map, ATE of SLAM and AMCL,
    goals reached and their times (all simulated time).
-Headless unless DISPLAY is set (then RViz shows each phase)."""
+Headless unless DISPLAY is set (then RViz shows each phase); with --web (make demo web:=true) the
+course web view (course_web) shows the robot, scans, map and plans in a browser."""
 import argparse
 import json
 import math
@@ -209,6 +210,10 @@ def main(argv=None):
                     help='simulated-time budget of the exploration, s (default 900)')
     ap.add_argument('--goal-time', type=float, default=120.0,
                     help='simulated-time budget of each navigation goal, s (default 120)')
+    ap.add_argument('--web', action='store_true',
+                    help='also serve the course web view (course_web web.launch: the robot, scans, '
+                         'map, plans in a browser at http://localhost:PORT)')
+    ap.add_argument('--web-port', type=int, default=8080, help='port of the web view (default 8080)')
     args = ap.parse_args(argv)
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
@@ -225,6 +230,7 @@ def main(argv=None):
     signal.signal(signal.SIGINT, interrupted)
     signal.signal(signal.SIGTERM, interrupted)
 
+    web = None
     core = RosCore(log_dir=os.path.join(out, 'ros_log'))
     core.start()
     env = dict(os.environ, **core.env)
@@ -240,6 +246,10 @@ def main(argv=None):
         import rospy
         rospy.set_param('/use_sim_time', True)
         rospy.init_node('demo', anonymous=True, disable_signals=True)
+        if args.web:    # on the demo's master for both phases
+            web = Proc(['roslaunch', 'course_web', 'web.launch', 'port:=%d' % args.web_port], env=env,
+                       log=os.path.join(out, 'web.log'))
+            say('web view: http://localhost:%d (log %s)' % (args.web_port, os.path.join(out, 'web.log')))
         t_wall = time.monotonic()
         elapsed, finished, truth1, est1, base = explore(out, env, display, args.explore_time, say)
         say('exploration %s after %.0f s of simulated time; map saved to %s.yaml/.pgm' % (
@@ -290,6 +300,8 @@ def main(argv=None):
         say('interrupted: stopping the simulation and the master')
         return 130
     finally:
+        if web is not None:
+            web.stop()
         core.stop()
 
 
