@@ -1,6 +1,6 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full test-stress test-class demo demo-lab2 bench clean
+.PHONY: setup build test test-full test-stress test-class test-docker demo demo-lab2 bench clean
 REPEAT ?= 1
 
 setup:
@@ -24,6 +24,12 @@ test-stress: setup
 # gradebooks compared (slow: tens of minutes; not part of make test)
 test-class: setup
 	bash labs/test-class.sh
+
+# the course image in a real Docker engine (base image by mmdebstrap, no Docker Hub): build,
+# course docker scripts with X11 on an Xvfb, make test inside: make test-docker RELEASE=trixie
+RELEASE ?= bookworm
+test-docker:
+	bash scripts/test_docker.sh $(RELEASE)
 
 demo: setup
 	bash scripts/demo.sh
