@@ -25,7 +25,7 @@ WORKDIR /course
 COPY . /course
 RUN --mount=type=secret,id=hostca \
     --mount=type=cache,target=/var/cache/course-ccache \
-    --mount=type=cache,target=/var/cache/apt,sharing=locked \
+    --mount=type=cache,target=/var/cache/apt,sharing=private \
     export CCACHE_DIR=/var/cache/course-ccache \
  && if [ -s /run/secrets/hostca ]; then \
         export PIP_CERT=/run/secrets/hostca SSL_CERT_FILE=/run/secrets/hostca \
