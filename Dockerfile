@@ -6,7 +6,8 @@
 #
 # BuildKit is needed (docker/docker_build.bash sets DOCKER_BUILDKIT=1): the RUN below mounts
 # build caches (ccache, downloaded .deb files: fast rebuilds, not in the image) and,
-# optionally, a CA bundle. No `# syntax=` line on purpose: the
+# optionally, a CA bundle. ROS_PARALLEL_JOBS: catkin_make's default adds `-l<cores>`, which on a
+# busy machine builds one file at a time. No `# syntax=` line on purpose: the
 # Dockerfile frontend built into Docker >= 20.10 reads RUN --mount, and naming a frontend
 # image would make every build pull it from Docker Hub.
 #
@@ -26,7 +27,7 @@ COPY . /course
 RUN --mount=type=secret,id=hostca \
     --mount=type=cache,target=/var/cache/course-ccache \
     --mount=type=cache,target=/var/cache/apt,sharing=private \
-    export CCACHE_DIR=/var/cache/course-ccache \
+    export CCACHE_DIR=/var/cache/course-ccache ROS_PARALLEL_JOBS="-j$(nproc)" PIP_NO_CACHE_DIR=1 \
  && if [ -s /run/secrets/hostca ]; then \
         export PIP_CERT=/run/secrets/hostca SSL_CERT_FILE=/run/secrets/hostca \
                REQUESTS_CA_BUNDLE=/run/secrets/hostca; \
