@@ -1,6 +1,6 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full test-stress test-class demo demo-lab2 bench clean
+.PHONY: setup build test test-full test-stress test-class test-docker demo demo-lab2 bench clean
 REPEAT ?= 1
 
 setup:
@@ -19,12 +19,18 @@ test-full: setup
 test-stress: setup
 	bash scripts/stress.sh --repeat $(REPEAT)
 
-# the main demo: the space scanner maps the office, then navigates on its map
 # grading a class: lab 1-3 rosters through labs/grade-class, locally and on a one-node Slurm,
 # gradebooks compared (slow: tens of minutes; not part of make test)
 test-class: setup
 	bash labs/test-class.sh
 
+# the course image in a real Docker engine (base image by mmdebstrap, no Docker Hub): build,
+# course docker scripts with X11 on an Xvfb, make test inside: make test-docker RELEASE=trixie
+RELEASE ?= bookworm
+test-docker:
+	bash scripts/test_docker.sh $(RELEASE)
+
+# the main demo: the space scanner maps the office, then navigates on its map;
 # make demo web:=true also serves the course's web view (http://localhost:8080) for the demo
 demo: setup
 	bash scripts/demo.sh $(if $(filter true,$(web)),--web)

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# One-command setup on Debian 12: Debian packages, pinned PyPI packages (workspace-local),
-# and the catkin workspace. Idempotent: a second run only rebuilds what changed.
-# The Dockerfile runs exactly this script.
+# One-command setup on Debian 12 (bookworm) or 13 (trixie): Debian packages, pinned PyPI
+# packages (workspace-local), and the catkin workspace. Idempotent: a second run only rebuilds
+# what changed. The Dockerfile runs exactly this script.
+# deps/*.txt lines may start with `RELEASE:` (e.g. `trixie: pkg`): used on that release only.
 set -euo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$REPO"
@@ -16,8 +17,21 @@ if [ "$(id -u)" != 0 ]; then
     SUDO="sudo"
 fi
 
+# 0. Debian release ---------------------------------------------------------------------
+SUPPORTED="bookworm trixie"
+RELEASE=$(. /etc/os-release 2>/dev/null && echo "${VERSION_CODENAME:-}")
+case " $SUPPORTED " in
+    *" ${RELEASE:-?} "*) ;;
+    *) die "unsupported system '$( . /etc/os-release 2>/dev/null; echo "${PRETTY_NAME:-unknown}")': supported are Debian 12 (bookworm) and Debian 13 (trixie)" ;;
+esac
+# deps file without comments and blanks, `RELEASE:` lines kept (prefix removed) on that release only
+deps_for_release() {
+    sed -e 's/#.*//' -e 's/^[[:space:]]*//' -e 's/[[:space:]]*$//' "$1" | grep -v '^$' \
+        | awk -v r="$RELEASE" '/^[a-z]+:/ { sub(/:[[:space:]]*/, " "); if ($1 == r) print $2; next } { print }'
+}
+
 # 1. Debian packages -------------------------------------------------------------------
-mapfile -t DEB_PKGS < <(sed -e 's/#.*//' -e 's/[[:space:]]//g' deps/debian.txt | grep -v '^$')
+mapfile -t DEB_PKGS < <(deps_for_release deps/debian.txt | sed -e 's/[[:space:]]//g' -e '/^$/d')
 missing=()
 for p in "${DEB_PKGS[@]}"; do
     status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
@@ -34,16 +48,16 @@ fi
 # 2. PyPI packages into a workspace-local directory ------------------------------------
 PYDEPS="$REPO/.deps/python"
 STAMP="$REPO/.deps/python.stamp"
+reqs=$(deps_for_release deps/python.txt || true)
 want=$(sha256sum deps/python.txt | cut -d' ' -f1)
 have=$(cat "$STAMP" 2>/dev/null || true)
 if [ "$want" != "$have" ]; then
-    reqs=$(sed -e 's/#.*//' deps/python.txt | grep -v '^[[:space:]]*$' || true)
     rm -rf "$PYDEPS"; mkdir -p "$PYDEPS"
     if [ -n "$reqs" ]; then
         if echo "$reqs" | grep -qv '=='; then die "deps/python.txt: every requirement must be pinned with =="; fi
         log "installing PyPI packages into .deps/python"
         /usr/bin/python3 -m pip install --disable-pip-version-check --no-warn-script-location \
-            --no-deps --target "$PYDEPS" -r deps/python.txt
+            --no-deps --target "$PYDEPS" -r <(echo "$reqs")
     fi
     echo "$want" > "$STAMP"
 else

@@ -1,0 +1,1 @@
+"""tf_compat: the textbook's `rosrun tf view_frames` on Debian's ROS (Python 3)."""
