@@ -45,6 +45,14 @@ else
     log "Debian packages: all ${#DEB_PKGS[@]} installed"
 fi
 
+# npm: Debian's package where nodejs is Debian's; a nodejs that bundles its own npm (NodeSource)
+# conflicts with Debian's npm package, so it is only installed when no npm is on PATH
+if ! command -v npm >/dev/null; then
+    log "installing Debian's npm"
+    $SUDO apt-get update
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends npm
+fi
+
 # 2. PyPI packages into a workspace-local directory ------------------------------------
 PYDEPS="$REPO/.deps/python"
 STAMP="$REPO/.deps/python.stamp"
@@ -64,7 +72,10 @@ else
     log "PyPI packages: up to date"
 fi
 
-# 3. catkin workspace ------------------------------------------------------------------
+# 3. JavaScript packages of the web view (pinned by course_web's package-lock.json) ------
+bash "$REPO/catkin_ws/src/web/course_web/scripts/install_js.sh" || die "course_web's JavaScript packages could not be installed"
+
+# 4. catkin workspace ------------------------------------------------------------------
 log "building catkin_ws with catkin_make"
 mkdir -p "$REPO/.deps"
 bash "$REPO/scripts/build.sh" all tests >"$REPO/.deps/catkin_make.log" 2>&1 || {
