@@ -142,8 +142,14 @@ while ((len(positions) < n or (motion and not drove_and_turned()))
 time.sleep(0.2)
 seen = set((p[0], p[1]) for p in poses)
 compared = [q for q in positions if q[2] >= 5]
-matched = sum(1 for q in compared if (q[0], q[1]) in seen)
-print(json.dumps({'poses': len(poses), 'positions': len(positions), 'matched': matched,
+# turtlesim's pose publisher keeps one message for a slow subscriber: on a loaded machine this
+# probe may miss a pose the republisher got. Such a position lies on the turtle's path between
+# two poses it did see (a tick is 2 m/s x 16 ms = 3.2 cm): within 10 cm of a seen pose
+def near(q):
+    return any(abs(q[0] - p[0]) < 0.1 and abs(q[1] - p[1]) < 0.1 for p in poses)
+matched = sum(1 for q in compared if (q[0], q[1]) in seen or near(q))
+exact = sum(1 for q in compared if (q[0], q[1]) in seen)
+print(json.dumps({'poses': len(poses), 'positions': len(positions), 'matched': matched, 'exact': exact,
        'compared': len(compared),
        'x_max': max([p[0] for p in poses] or [0]), 'x_min': min([p[0] for p in poses] or [0]),
        'turning': sum(1 for p in poses if abs(p[4] - 1.4) < 1e-3 and p[3] == 1.0),
@@ -191,6 +197,7 @@ def test_my_setup_launch(workspace, roscore, xvfb, tmp_path):
         seen = _probe(env, '/turtle1/pose', '/position2d', 300, motion=True)   # >= 5 s at 62.5 Hz
         assert seen['positions'] >= 300 and seen['poses'] >= 300, seen
         assert seen['matched'] >= seen['compared'] - 2, seen     # position2d carries pose x, y
+        assert seen['exact'] >= seen['compared'] // 2, seen      # (most of them seen exactly)
         assert seen['straight'] > 0 and seen['turning'] > 0, seen  # both branches of the law
         assert seen['turn_x_ok'], seen
         assert seen['x_max'] > 9.0, seen

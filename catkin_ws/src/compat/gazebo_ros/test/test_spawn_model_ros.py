@@ -159,13 +159,13 @@ def test_wait_for_model(sim, tmp_path):
                    '-model', 'waiter', '-wait', 'table'], env=sim.env,
                   log=str(tmp_path / 'waiter.log'))
     try:
-        wait_for(lambda: 'Waiting for model table' in waiter.output(), 20,
+        wait_for(lambda: 'Waiting for model table' in waiter.output(), 120,
                  what='spawn_model -wait to start waiting')
         time.sleep(1.0)
         assert waiter.alive() and not sim.requests(model_name='waiter')
         rc, out = spawn(sim, '-urdf', '-stdin', '-model', 'table', stdin=URDF)
         assert rc == 0, out
-        wait_for(lambda: not waiter.alive(), 20, what='spawn_model -wait to finish')
+        wait_for(lambda: not waiter.alive(), 120, what='spawn_model -wait to finish')
         assert waiter.popen.returncode == 0, waiter.output()
         assert sim.requests(model_name='waiter', service='/gazebo/spawn_urdf_model')
     finally:
@@ -180,7 +180,7 @@ def test_bond_deletes_model_when_killed(sim, tmp_path, sig):
     try:
         proc.popen.stdin.write(URDF.encode())
         proc.popen.stdin.close()
-        wait_for(lambda: 'Waiting for shutdown to delete model' in proc.output(), 20,
+        wait_for(lambda: 'Waiting for shutdown to delete model' in proc.output(), 120,
                  what='spawn_model -b to spawn')
         assert proc.alive() and not sim.requests(service='/gazebo/delete_model', model_name=name)
         os.kill(proc.pid, sig)

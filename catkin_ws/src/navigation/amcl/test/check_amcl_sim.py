@@ -135,15 +135,19 @@ class AmclOfficeTest(unittest.TestCase):
                 errors.append((dxy, dyaw))
         pub.publish(Twist())
         t_stop = rospy.Time.now().to_sec()
-        # two no-motion updates on the stopped robot, then compare at rest
         rospy.wait_for_service('/request_nomotion_update', WALL_TIMEOUT)
         nomotion = rospy.ServiceProxy('/request_nomotion_update', Empty)
         self.wait(lambda: rospy.Time.now().to_sec() > t_stop + 1.0, '1 s of sim time after stopping')
-        for _ in range(2):
+        # no-motion updates on the stopped robot (at least two; the filter is random: more while
+        # it is still outside the at-rest tolerance, up to NOMOTION_UPDATES)
+        for rest_updates in range(1, NOMOTION_UPDATES + 1):
             stamp = self.pose.header.stamp
             nomotion()
             self.wait(lambda: self.pose.header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
-        sxy, syaw = self.error()
+            sxy, syaw = self.error()
+            if rest_updates >= 2 and sxy < STATIC_XY and syaw < STATIC_YAW:
+                break
+        rospy.loginfo('amcl at rest within tolerance after %d no-motion updates', rest_updates)
         rospy.loginfo('amcl converged after %s s of sim time; tracking max error %.3f m %.3f rad',
                       converged_at, max(e[0] for e in errors), max(e[1] for e in errors))
         self.assertIsNotNone(converged_at, 'amcl did not converge within %.0f s of sim time: error %.3f m %.3f rad'

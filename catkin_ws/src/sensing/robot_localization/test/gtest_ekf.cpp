@@ -12,19 +12,11 @@ namespace
 {
 Eigen::VectorXi idx(std::initializer_list<int> l)
 {
-  Eigen::VectorXi v(l.size());
-  int k = 0;
-  for (int i : l)
-    v(k++) = i;
-  return v;
+  return Eigen::Map<const Eigen::VectorXi>(l.begin(), l.size());
 }
 Eigen::VectorXd vec(std::initializer_list<double> l)
 {
-  Eigen::VectorXd v(l.size());
-  int k = 0;
-  for (double d : l)
-    v(k++) = d;
-  return v;
+  return Eigen::Map<const Eigen::VectorXd>(l.begin(), l.size());
 }
 }  // namespace
 
