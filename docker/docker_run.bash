@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Start the course container with X11 forwarding (RViz, turtlesim, rqt_plot windows) and the
 # host folder workspace/ mounted at /root/workspace. Everything else in the container is lost
-# when this terminal closes: keep your catkin workspaces in /root/workspace.
+# when this terminal closes: keep your catkin workspaces in /root/workspace. With --net=host
+# the course web view (roslaunch course_web web.launch) is http://localhost:8080 on the host.
 #   ./docker_run.bash                  a shell in the Debian 12 (bookworm) image
 #   ./docker_run.bash trixie           a shell in the Debian 13 (trixie) image
 #   ./docker_run.bash [trixie] CMD...  run CMD (in the course's ROS environment) instead
