@@ -13,7 +13,8 @@
 #
 # Behind a TLS-intercepting proxy, pass the host's CA bundle as a build secret:
 #   --secret id=hostca,src=/etc/ssl/certs/ca-certificates.crt
-# PyPI downloads in setup.sh trust it during that RUN only; it never lands in a layer of the image.
+# PyPI and npm downloads in setup.sh trust it during that RUN only; it never lands in a layer
+# of the image.
 ARG DEBIAN_RELEASE=bookworm
 FROM debian:${DEBIAN_RELEASE}
 ARG DEBIAN_RELEASE
@@ -30,7 +31,7 @@ RUN --mount=type=secret,id=hostca \
     export CCACHE_DIR=/var/cache/course-ccache ROS_PARALLEL_JOBS="-j$(nproc)" PIP_NO_CACHE_DIR=1 \
  && if [ -s /run/secrets/hostca ]; then \
         export PIP_CERT=/run/secrets/hostca SSL_CERT_FILE=/run/secrets/hostca \
-               REQUESTS_CA_BUNDLE=/run/secrets/hostca; \
+               REQUESTS_CA_BUNDLE=/run/secrets/hostca NODE_EXTRA_CA_CERTS=/run/secrets/hostca; \
     fi \
  && bash /course/scripts/setup.sh \
  && echo 'source /course/scripts/env.sh' >> /root/.bashrc
