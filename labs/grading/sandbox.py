@@ -102,8 +102,11 @@ class Sandbox:
                 a += ['--symlink', target, link]
             elif os.path.isdir(link):
                 a += ['--ro-bind', link, link]
+        # the private /tmp first: a course tree (or workspace) under /tmp is bound on top of it
+        a += ['--size', str(lim['tmp_mb'] << 20), '--perms', '1777', '--tmpfs', '/tmp',
+              '--perms', '0777', '--dir', '/tmp/home']
         d, parents = os.path.dirname(REPO), []
-        while d != '/':
+        while d not in ('/', '/tmp'):
             parents.insert(0, d)
             d = os.path.dirname(d)
         for d in parents:          # bwrap makes missing parents 0700: the sandbox's user must pass
@@ -115,8 +118,6 @@ class Sandbox:
                     and not any((h + '/').startswith(x + '/') for x in hidden)):
                 hidden.append(h)
                 a += ['--tmpfs', h, '--remount-ro', h]
-        a += ['--size', str(lim['tmp_mb'] << 20), '--perms', '1777', '--tmpfs', '/tmp',
-              '--perms', '0777', '--dir', '/tmp/home']
         if self.ws:
             parents, d = [], os.path.dirname(self.ws)
             while d.startswith('/tmp/'):
