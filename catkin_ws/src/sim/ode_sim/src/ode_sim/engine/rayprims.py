@@ -68,30 +68,66 @@ def pose_arrays(shapes):
 class Posing:
     """World poses of dynamic shapes, fast: each distinct link_pose callable (equal bound
     methods count as one) is called once per cast and composed with the shapes' fixed local
-    poses in one batch."""
+    poses in one batch. A static shape among them (a group of one kind with static and dynamic
+    shapes) keeps its static link pose."""
 
     def __init__(self, shapes):
         slot = {}
         self.calls = []
         idx = []
         for s in shapes:
-            key = s.link_pose                       # bound methods of one link compare equal
-            try:
-                hash(key)
-            except TypeError:
-                key = ('id', id(key))
+            if s.link_pose is None:
+                key = ('static', id(s))
+                call = (lambda pose=s.static_pose: pose)
+            else:
+                key = call = s.link_pose            # bound methods of one link compare equal
+                try:
+                    hash(key)
+                except TypeError:
+                    key = ('id', id(key))
             if key not in slot:
                 slot[key] = len(self.calls)
-                self.calls.append(s.link_pose)
+                self.calls.append(call)
             idx.append(slot[key])
-        self.idx = np.array(idx, dtype=np.int64)
         self.local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
         self.local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
+        # a simulated link's pose() (engine.bodies.SimLink) is read from its ODE body in one
+        # batch: position, quaternion and the link frame's fixed offset in the body frame
+        bodies, offsets, order = [], [], []
+        generic = []
+        for j, f in enumerate(self.calls):
+            owner = getattr(f, '__self__', None)
+            frame = getattr(owner, 'body_frame', None)
+            src = frame() if getattr(f, '__name__', '') == 'pose' and callable(frame) else None
+            if src is not None:
+                bodies.append(src[0])
+                offsets.append(src[1])
+                order.append(j)
+            else:
+                generic.append(j)
+        self.bodies = bodies
+        self.body_off_rot = np.array([o.rotation() for o in offsets]).reshape(-1, 3, 3)
+        self.body_off_pos = np.array([o.p for o in offsets]).reshape(-1, 3)
+        self.generic = [self.calls[j] for j in generic]
+        # link rows: bodies first, then the other callables; idx maps shapes to link rows
+        row = {j: r for r, j in enumerate(order + generic)}
+        self.idx = np.array([row[i] for i in idx], dtype=np.int64)
 
     def __call__(self):
-        poses = [f() for f in self.calls]
-        lrot = quat_matrices(np.array([p.q for p in poses]))[self.idx]
-        lpos = np.array([p.p for p in poses])[self.idx]
+        rots, poss = [], []
+        if self.bodies:
+            q = np.array([b.getQuaternion() for b in self.bodies])[:, (1, 2, 3, 0)]   # ODE: w x y z
+            q /= np.sqrt(np.einsum('ij,ij->i', q, q))[:, None]
+            brot = quat_matrices(q)
+            bpos = np.array([b.getPosition() for b in self.bodies])
+            rots.append(np.matmul(brot, self.body_off_rot))
+            poss.append(bpos + np.einsum('kij,kj->ki', brot, self.body_off_pos))
+        if self.generic:
+            poses = [f() for f in self.generic]
+            rots.append(quat_matrices(np.array([p.q for p in poses])))
+            poss.append(np.array([p.p for p in poses]))
+        lrot = (rots[0] if len(rots) == 1 else np.concatenate(rots))[self.idx]
+        lpos = (poss[0] if len(poss) == 1 else np.concatenate(poss))[self.idx]
         rot = np.matmul(lrot, self.local_rot)
         pos = lpos + np.einsum('kij,kj->ki', lrot, self.local_pos)
         return rot, pos
