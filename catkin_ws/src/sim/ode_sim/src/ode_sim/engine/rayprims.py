@@ -317,8 +317,9 @@ def expand(ids, starts, counts):
 
 
 def first_per_ray(r, t, tri):
-    """Among candidate hits (ray r, distance t, triangle tri): the nearest per ray."""
-    order = np.lexsort((t, r))
+    """Among candidate hits (ray r, distance t, triangle or item tri): the nearest per ray;
+    on a tie the lowest tri (the first in the caster's order, as the compiled core)."""
+    order = np.lexsort((tri, t, r))
     r, t, tri = r[order], t[order], tri[order]
     first = np.ones(len(r), dtype=bool)
     first[1:] = r[1:] != r[:-1]

@@ -244,6 +244,7 @@ void RayScene::setMeshes(int64_t static_root, const std::vector<int64_t>& shape,
 
 void RayScene::walk(int64_t root, const double o[3], const double d[3], const double inv[3],
                     double tmin, const uint8_t* excluded, double& best, int64_t& who) const {
+  int64_t hit_tri = -1;  // the triangle of this walk that holds `best`, if any
   int64_t stack[512];
   std::vector<int64_t> spill;  // only for hierarchies deeper than any mesh needs
   int top = 0;
@@ -285,10 +286,13 @@ void RayScene::walk(int64_t root, const double o[3], const double d[3], const do
       const double u = (tx * px + ty * py + tz * pz) * inv_det;
       const double v = (d[0] * qx + d[1] * qy + d[2] * qz) * inv_det;
       const double t = (bx * qx + by * qy + bz * qz) * inv_det;
+      // nearest; on a tie the lowest triangle of this hierarchy (bvh.py's first_per_ray),
+      // while a tie with what was hit before the walk keeps that
       if (u >= -kTol && v >= -kTol && u + v <= 1.0 + kTol && det != 0.0 && t >= tmin &&
-          t < best) {
+          (t < best || (t == best && tri < hit_tri))) {
         best = t;
         who = owner_[tri];
+        hit_tri = tri;
       }
     }
   }

@@ -6,7 +6,8 @@
 //  * a ray hits a shape at its first surface crossing at t >= tmin (a ray starting inside a
 //    solid reports where it leaves it); a hit counts while t < the best so far, which starts
 //    at max_range, so the nearest hit below max_range wins and the first one in the caster's
-//    order wins a tie (boxes, spheres, cylinders, then planes, then meshes, as raycast.py);
+//    order wins a tie (raycast.py's: boxes, spheres and cylinders in its item order, then
+//    planes, then meshes, the lowest triangle of a hierarchy first);
 //  * boxes (half extents), spheres (radius), cylinders (radius, half length along local Z, flat
 //    caps), two-sided infinite planes, triangle meshes (Moller-Trumbore, both faces count) in
 //    the wide BVH forest bvh.py builds (its flat arrays are handed over as they are);
