@@ -1,5 +1,10 @@
 """Ray casting against the simulator's collision shapes, vectorised with numpy.
 
+This module is RayCaster's interface and its NumPy implementation (core='python': the
+reference); the default core='compiled' does the same casting in the engine's compiled core
+(raycore.py, core/raycast.cpp), one call per scan, with the same results
+(test/test_raycast_core.py).
+
 `RayCaster(shapes).cast(origins, directions, max_range, exclude)` returns, per ray, the distance
 to the first collision surface (np.inf when nothing is hit within max_range). It is what the
 lidar (ray sensor) uses, and it hits the very geometry the physics collides with: the shapes
@@ -26,8 +31,9 @@ first-contact shortcut and no back-face culling, and dGeomRaySetClosestHit(ray, 
     at distance >= min_range. Gazebo starts its rays at <range><min> (laser.py), which is what
     `min_range` gives without moving the origins. Gazebo does NOT exclude the sensor's own
     link; `exclude` lets a caller drop shapes (e.g. the sensor's own link).
-  * Hits count when min_range <= distance < max_range (the nearest one wins; on a tie, the
-    first in the order boxes, spheres, cylinders, planes, meshes).
+  * Hits count when min_range <= distance < max_range. The nearest wins; on a tie the first
+    in the caster's order: boxes, spheres, cylinders (rays from one origin: static ones
+    first), then planes, then meshes (the lowest triangle of a hierarchy).
 
 How it is fast enough (bench/raycast): when all rays share one origin (a lidar scan; also
 `min_range` instead of moved origins), boxes, spheres, cylinders and the leaves of the mesh
