@@ -393,12 +393,18 @@ def test_the_core_rejects_inconsistent_arrays():
     scene.set_items(np.array([0], dtype=np.intc), np.array([1]), np.ones((1, 3)),
                     np.array([0], dtype=np.intc), eye, np.zeros((1, 3)))
     assert scene.dynamic_slots == 1
-    with pytest.raises(ValueError, match='dynamic slots'):
-        scene.cast(np.zeros(3), np.array([[1.0, 0, 0]]), True, 0.0, 5.0, np.zeros((0, 9)),
-                   np.zeros((0, 3)))
+    ray = (np.zeros(3), np.array([[1.0, 0, 0]]), True, 0.0, 5.0)
+    with pytest.raises(ValueError, match='no link rows'):
+        scene.cast(*ray, np.zeros((0, 4)), np.zeros((0, 3)))
+    with pytest.raises(ValueError, match='slot row outside'):
+        scene.set_slots(np.array([1]), eye, np.zeros((1, 3)), 1)
+    scene.set_slots(np.array([0]), eye, np.array([[1.0, 0, 0]]), 1)   # 1 m ahead of its link
+    with pytest.raises(ValueError, match='poses of 1 link rows'):
+        scene.cast(*ray, np.zeros((0, 4)), np.zeros((0, 3)))
+    link_q, link_p = np.array([[0, 0, 0, 1.0]]), np.array([[2.0, 0, 0]])
     with pytest.raises(ValueError, match='one flag per shape'):
-        scene.cast(np.zeros(3), np.array([[1.0, 0, 0]]), True, 0.0, 5.0, eye,
-                   np.array([[3.0, 0, 0]]), np.zeros(5, dtype=np.uint8))
-    t, k = scene.cast(np.zeros(3), np.array([[1.0, 0, 0]]), True, 0.0, 5.0, eye,
-                      np.array([[3.0, 0, 0]]))
+        scene.cast(*ray, link_q, link_p, np.zeros(5, dtype=np.uint8))
+    t, k = scene.cast(*ray, link_q, link_p)
     assert t.tolist() == [2.0] and k.tolist() == [1]
+    t, k = scene.cast(*ray, link_q, link_p, np.array([0, 1], dtype=np.uint8))
+    assert t.tolist() == [np.inf] and k.tolist() == [-1]

@@ -4,10 +4,11 @@ casts every scan in one call without the GIL. The NumPy ray caster (core='python
 raycast.py) is the reference it is tested against (test/test_raycast_core.py).
 
 What is handed over: boxes, spheres and cylinders (in raycast.py's item order, static ones
-first) and planes with their world poses, static or a slot of the dynamic poses; the meshes'
-wide BVH forest exactly as bvh.py builds it (all static meshes in one world-frame hierarchy,
-each dynamic mesh in its own). On every cast the dynamic shapes' world poses are computed in
-one batch (rayprims.Posing: one call per moving link) and passed with the rays."""
+first) and planes with their world poses if static, else a slot: the shape's pose in its
+link's frame (rayprims.Posing); the meshes' wide BVH forest exactly as bvh.py builds it (all
+static meshes in one world-frame hierarchy, each dynamic mesh in its own). On every cast the
+moving links' poses are read in one batch (Posing.links(): simulated links straight from
+their ODE bodies) and passed with the rays; the core composes the shapes' poses."""
 import numpy as np
 
 from ode_sim.description.model import ModelError
@@ -65,8 +66,7 @@ class CompiledRays:
         dynamic = [s for _, s in items + planes + meshes if not s.static]
         slot_of = {id(s): j for j, s in enumerate(dynamic)}
         self._posing = Posing(dynamic) if dynamic else None
-        self._nslots = len(dynamic)
-        self._none = (np.zeros((0, 9)), np.zeros((0, 3)))
+        self._none = (np.zeros((0, 4)), np.zeros((0, 3)))
 
         if items:
             p = np.zeros((len(items), 3))
@@ -116,14 +116,15 @@ class CompiledRays:
                                   np.array([r for _, r, _ in dyn], dtype=np.int64),
                                   np.array([k for _, _, k in dyn], dtype=np.intc))
 
+        if self._posing is not None:
+            self.scene.set_slots(self._posing.idx, self._posing.local_rot,
+                                 self._posing.local_pos, len(self._posing.calls))
+
     def cast_hits(self, o, d, common, tmin, max_range, excluded):
         """Rays as raycast.as_rays gives them; excluded: a bool mask per shape or None.
         Returns (t (N,), shape index (N,))."""
-        if self._posing is not None:
-            rot, pos = self._posing()
-        else:
-            rot, pos = self._none
+        q, p = self._posing.links() if self._posing is not None else self._none
         ex = None if excluded is None else excluded.view(np.uint8)
         origins = common if common is not None else o
         return self.scene.cast(origins, d, common is not None, float(tmin), float(max_range),
-                               rot, pos, ex)
+                               q, p, ex)

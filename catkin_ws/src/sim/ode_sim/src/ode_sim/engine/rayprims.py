@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 
+from ode_sim.description.transforms import Pose
+
 LEAF = 8        # triangles per BVH leaf (at most)
 BRANCH = 8      # children per inner BVH node (at most): 3 levels of binary median splits
 TOL = 1e-12
@@ -89,10 +91,9 @@ class Posing:
                 slot[key] = len(self.calls)
                 self.calls.append(call)
             idx.append(slot[key])
-        self.local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
-        self.local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
         # a simulated link's pose() (engine.bodies.SimLink) is read from its ODE body in one
-        # batch: position, quaternion and the link frame's fixed offset in the body frame
+        # batch: position and quaternion; the link frame's fixed offset in the body frame is
+        # folded into the shapes' local poses
         bodies, offsets, order = [], [], []
         generic = []
         for j, f in enumerate(self.calls):
@@ -106,30 +107,41 @@ class Posing:
             else:
                 generic.append(j)
         self.bodies = bodies
-        self.body_off_rot = np.array([o.rotation() for o in offsets]).reshape(-1, 3, 3)
-        self.body_off_pos = np.array([o.p for o in offsets]).reshape(-1, 3)
         self.generic = [self.calls[j] for j in generic]
         # link rows: bodies first, then the other callables; idx maps shapes to link rows
         row = {j: r for r, j in enumerate(order + generic)}
         self.idx = np.array([row[i] for i in idx], dtype=np.int64)
+        off = offsets + [Pose()] * len(generic)
+        off_rot = np.array([o.rotation() for o in off]).reshape(-1, 3, 3)[self.idx]
+        off_pos = np.array([o.p for o in off]).reshape(-1, 3)[self.idx]
+        local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
+        local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
+        # each shape's pose in its row's frame (the body's, or the link's for the others)
+        self.local_rot = np.matmul(off_rot, local_rot)
+        self.local_pos = off_pos + np.einsum('kij,kj->ki', off_rot, local_pos)
 
-    def __call__(self):
-        rots, poss = [], []
+    def links(self):
+        """The rows' poses now: unit quaternions (L, 4) x y z w and positions (L, 3)."""
+        qs, ps = [], []
         if self.bodies:
             q = np.array([b.getQuaternion() for b in self.bodies])[:, (1, 2, 3, 0)]   # ODE: w x y z
             q /= np.sqrt(np.einsum('ij,ij->i', q, q))[:, None]
-            brot = quat_matrices(q)
-            bpos = np.array([b.getPosition() for b in self.bodies])
-            rots.append(np.matmul(brot, self.body_off_rot))
-            poss.append(bpos + np.einsum('kij,kj->ki', brot, self.body_off_pos))
+            qs.append(q)
+            ps.append(np.array([b.getPosition() for b in self.bodies]))
         if self.generic:
             poses = [f() for f in self.generic]
-            rots.append(quat_matrices(np.array([p.q for p in poses])))
-            poss.append(np.array([p.p for p in poses]))
-        lrot = (rots[0] if len(rots) == 1 else np.concatenate(rots))[self.idx]
-        lpos = (poss[0] if len(poss) == 1 else np.concatenate(poss))[self.idx]
+            qs.append(np.array([p.q for p in poses]))
+            ps.append(np.array([p.p for p in poses]))
+        if len(qs) == 1:
+            return qs[0], ps[0]
+        return np.concatenate(qs), np.concatenate(ps)
+
+    def __call__(self):
+        """World rotations (K, 3, 3) and positions (K, 3) of the shapes now."""
+        q, p = self.links()
+        lrot = quat_matrices(q)[self.idx]
         rot = np.matmul(lrot, self.local_rot)
-        pos = lpos + np.einsum('kij,kj->ki', lrot, self.local_pos)
+        pos = p[self.idx] + np.einsum('kij,kj->ki', lrot, self.local_pos)
         return rot, pos
 
 

@@ -193,21 +193,32 @@ PYBIND11_MODULE(_core, m) {
                          flat(slot, k, "mesh slots"));
            })
       .def_property_readonly("shapes", &RayScene::shapes)
+      .def("set_slots",
+           [](RayScene& r, const CArray<int64_t>& row, const CArray<double>& local_rot,
+              const CArray<double>& local_pos, int64_t links) {
+             const py::ssize_t k = row.size();
+             r.setSlots(flat(row, k, "slot rows"), flat(local_rot, 9 * k, "slot rotations"),
+                        flat(local_pos, 3 * k, "slot positions"), links);
+           })
       .def_property_readonly("dynamic_slots", &RayScene::dynamicSlots)
+      .def_property_readonly("link_rows", &RayScene::linkRows)
       .def(
           "cast",
           [](const RayScene& r, const CArray<double>& o, const CArray<double>& d, bool common,
-             double tmin, double max_range, const CArray<double>& dyn_rot,
-             const CArray<double>& dyn_pos, std::optional<CArray<uint8_t>> excluded) {
+             double tmin, double max_range, const CArray<double>& link_q,
+             const CArray<double>& link_p, std::optional<CArray<uint8_t>> excluded) {
             if (d.ndim() != 2 || d.shape(1) != 3)
               throw std::invalid_argument("RayScene.cast: directions must be (N, 3)");
             const py::ssize_t n = d.shape(0);
             if (common ? o.size() < 3 : o.size() != 3 * n)
               throw std::invalid_argument("RayScene.cast: origins must be (3,) or (N, 3)");
-            const py::ssize_t slots = r.dynamicSlots();
-            if (dyn_rot.size() != 9 * slots || dyn_pos.size() != 3 * slots)
+            if (!r.ready())
+              throw std::invalid_argument("RayScene.cast: the dynamic slots have no link rows "
+                                          "(set_slots)");
+            const py::ssize_t links = r.linkRows();
+            if (link_q.size() != 4 * links || link_p.size() != 3 * links)
               throw std::invalid_argument("RayScene.cast: expected the poses of " +
-                                          std::to_string(slots) + " dynamic slots");
+                                          std::to_string(links) + " link rows");
             if (excluded && excluded->size() != r.shapes())
               throw std::invalid_argument("RayScene.cast: excluded needs one flag per shape");
             py::array_t<double> t(n);
@@ -217,12 +228,12 @@ PYBIND11_MODULE(_core, m) {
             const uint8_t* ex = excluded ? excluded->data() : nullptr;
             {
               py::gil_scoped_release release;
-              r.cast(o.data(), d.data(), n, common, tmin, max_range, dyn_rot.data(),
-                     dyn_pos.data(), ex, tp, wp);
+              r.cast(o.data(), d.data(), n, common, tmin, max_range, link_q.data(),
+                     link_p.data(), ex, tp, wp);
             }
             return py::make_tuple(t, who);
           },
           py::arg("origins"), py::arg("directions"), py::arg("common"), py::arg("tmin"),
-          py::arg("max_range"), py::arg("dyn_rot"), py::arg("dyn_pos"),
+          py::arg("max_range"), py::arg("link_q"), py::arg("link_p"),
           py::arg("excluded") = py::none());
 }

@@ -242,6 +242,19 @@ void RayScene::setMeshes(int64_t static_root, const std::vector<int64_t>& shape,
   }
 }
 
+void RayScene::setSlots(const std::vector<int64_t>& row, const std::vector<double>& local_rot,
+                        const std::vector<double>& local_pos, int64_t links) {
+  const size_t k = row.size();
+  need(local_rot, 9 * k, "slot rotations");
+  need(local_pos, 3 * k, "slot positions");
+  for (int64_t r : row)
+    if (r < 0 || r >= links) throw std::invalid_argument("RayScene: slot row outside the links");
+  slot_row_ = row;
+  slot_rot_ = local_rot;
+  slot_pos_ = local_pos;
+  nlinks_ = links;
+}
+
 void RayScene::walk(int64_t root, const double o[3], const double d[3], const double inv[3],
                     double tmin, const uint8_t* excluded, double& best, int64_t& who) const {
   int64_t hit_tri = -1;  // the triangle of this walk that holds `best`, if any
@@ -299,9 +312,42 @@ void RayScene::walk(int64_t root, const double o[3], const double d[3], const do
 }
 
 void RayScene::cast(const double* o_all, const double* d_all, int64_t n, bool common,
-                    double tmin, double max_range, const double* dyn_rot,
-                    const double* dyn_pos, const uint8_t* excluded, double* t_out,
+                    double tmin, double max_range, const double* link_q,
+                    const double* link_p, const uint8_t* excluded, double* t_out,
                     int64_t* who_out) const {
+  // the dynamic slots' world poses now (rayprims.Posing.__call__, quat_matrices)
+  std::vector<double> link_rot(9 * nlinks_);
+  for (int64_t l = 0; l < nlinks_; ++l) {
+    const double x = link_q[4 * l], y = link_q[4 * l + 1], z = link_q[4 * l + 2],
+                 w = link_q[4 * l + 3];
+    double* m = &link_rot[9 * l];
+    m[0] = 1 - 2 * (y * y + z * z);
+    m[1] = 2 * (x * y - z * w);
+    m[2] = 2 * (x * z + y * w);
+    m[3] = 2 * (x * y + z * w);
+    m[4] = 1 - 2 * (x * x + z * z);
+    m[5] = 2 * (y * z - x * w);
+    m[6] = 2 * (x * z - y * w);
+    m[7] = 2 * (y * z + x * w);
+    m[8] = 1 - 2 * (x * x + y * y);
+  }
+  const size_t nslots = slot_row_.size();
+  std::vector<double> dyn_rot_v(9 * nslots), dyn_pos_v(3 * nslots);
+  for (size_t j = 0; j < nslots; ++j) {
+    const double* R = &link_rot[9 * slot_row_[j]];
+    const double* p = link_p + 3 * slot_row_[j];
+    const double* L = &slot_rot_[9 * j];
+    const double* lp = &slot_pos_[3 * j];
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b)
+        dyn_rot_v[9 * j + 3 * a + b] = R[3 * a] * L[b] + R[3 * a + 1] * L[3 + b] +
+                                       R[3 * a + 2] * L[6 + b];
+      dyn_pos_v[3 * j + a] = p[a] + (R[3 * a] * lp[0] + R[3 * a + 1] * lp[1] +
+                                     R[3 * a + 2] * lp[2]);
+    }
+  }
+  const double* dyn_rot = dyn_rot_v.data();
+  const double* dyn_pos = dyn_pos_v.data();
   // this cast's poses: static shapes as set, dynamic ones from the slots
   std::vector<Item> items = items_;
   for (Item& it : items)

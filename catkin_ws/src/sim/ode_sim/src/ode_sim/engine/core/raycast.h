@@ -28,7 +28,7 @@ class RayScene {
 
   /// Boxes (code 0, p = half extents), spheres (1, p[0] = radius) and cylinders (2, p[0] =
   /// radius, p[1] = half length). shape: index in the caster's shape list; slot: -1 for a
-  /// static item posed by rot (row-major 3x3) / pos, else its row in cast()'s dyn_rot/dyn_pos.
+  /// static item posed by rot (row-major 3x3) / pos, else its dynamic slot (setSlots).
   /// Items are given in the NumPy caster's item order (static ones first).
   void setItems(const std::vector<int>& code, const std::vector<int64_t>& shape,
                 const std::vector<double>& p, const std::vector<int>& slot,
@@ -48,18 +48,25 @@ class RayScene {
   /// shape, root and slot (each in its own frame).
   void setMeshes(int64_t static_root, const std::vector<int64_t>& shape,
                  const std::vector<int64_t>& root, const std::vector<int>& slot);
-  /// Number of dynamic slots the shapes refer to (rows of cast()'s dyn_rot / dyn_pos).
+  /// The dynamic slots' poses relative to their link rows (rayprims.Posing): slot j is
+  /// posed as link row[j] (given to cast()) times local_rot[j] / local_pos[j]; `links` rows.
+  void setSlots(const std::vector<int64_t>& row, const std::vector<double>& local_rot,
+                const std::vector<double>& local_pos, int64_t links);
+  /// Number of dynamic slots the shapes refer to, and of link rows cast() needs.
   int dynamicSlots() const { return nslots_; }
+  int64_t linkRows() const { return nlinks_; }
+  /// Whether every slot the shapes refer to has its row (setSlots after the shapes).
+  bool ready() const { return static_cast<int64_t>(slot_row_.size()) >= nslots_; }
   /// Number of shapes (the length of cast()'s excluded flags).
   int64_t shapes() const { return nshapes_; }
 
   /// n rays: origins o and unit directions d (3 per ray; `common`: all origins equal, the
-  /// first row is used), nearest hit with tmin <= t < max_range. dyn_rot / dyn_pos: the
-  /// world poses of the dynamic slots now (9 and 3 per slot); excluded: one flag per shape,
-  /// or nullptr. Writes t (inf for none) and the shape index hit (-1 for none). Const and
-  /// self-contained: safe to run without the GIL.
+  /// first row is used), nearest hit with tmin <= t < max_range. link_q / link_p: the link
+  /// rows' world poses now (unit quaternion x y z w, position); excluded: one flag per
+  /// shape, or nullptr. Writes t (inf for none) and the shape index hit (-1 for none). Const
+  /// and self-contained: safe to run without the GIL.
   void cast(const double* o, const double* d, int64_t n, bool common, double tmin,
-            double max_range, const double* dyn_rot, const double* dyn_pos,
+            double max_range, const double* link_q, const double* link_p,
             const uint8_t* excluded, double* t_out, int64_t* who_out) const;
 
  private:
@@ -98,6 +105,9 @@ class RayScene {
   int64_t static_root_ = -1;
   std::vector<DynMesh> dyn_meshes_;
   int nslots_ = 0;
+  int64_t nlinks_ = 0;
+  std::vector<int64_t> slot_row_;
+  std::vector<double> slot_rot_, slot_pos_;  // the slots' poses in their rows' frames
   int64_t nshapes_;
 };
 
