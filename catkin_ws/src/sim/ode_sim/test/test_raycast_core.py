@@ -408,3 +408,12 @@ def test_the_core_rejects_inconsistent_arrays():
     assert t.tolist() == [2.0] and k.tolist() == [1]
     t, k = scene.cast(*ray, link_q, link_p, np.array([0, 1], dtype=np.uint8))
     assert t.tolist() == [np.inf] and k.tolist() == [-1]
+    # a hierarchy whose node refers to itself or outside would never end or read past it
+    tri = (np.zeros((1, 3)), np.eye(3)[:1], np.eye(3)[1:2], np.array([0]))
+    box = (np.zeros((2, 3)), np.ones((2, 3)))
+    with pytest.raises(ValueError, match='children before it'):
+        scene.set_forest(*box, np.array([0, 0]), np.array([2, 1]),
+                         np.array([0, 1], dtype=np.uint8), *tri)
+    with pytest.raises(ValueError, match='outside the forest'):
+        scene.set_forest(*box, np.array([1, 0]), np.array([1, 2]),
+                         np.array([0, 1], dtype=np.uint8), *tri)

@@ -211,6 +211,9 @@ void RayScene::setForest(const std::vector<double>& lo, const std::vector<double
     const int64_t end = first[j] + count[j];
     if (first[j] < 0 || count[j] < 0 || end > static_cast<int64_t>(leaf[j] ? t : m))
       throw std::invalid_argument("RayScene: BVH node refers outside the forest");
+    // children come after their parent (bvh.py builds breadth first): every walk ends
+    if (!leaf[j] && first[j] <= static_cast<int64_t>(j))
+      throw std::invalid_argument("RayScene: BVH node's children before it");
   }
   for (int64_t s : owner) checkShape(s);
   lo_ = lo;
