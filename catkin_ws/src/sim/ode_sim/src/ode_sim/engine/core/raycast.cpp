@@ -392,7 +392,7 @@ void RayScene::cast(const double* o_all, const double* d_all, int64_t n, bool co
     for (int j : order) {
       const Item& it = items[j];
       if (!slab(it.lo, it.hi, o, inv, tmin, best)) continue;
-      double lo[3], ld[3], t;
+      double lo[3] = {0.0, 0.0, 0.0}, ld[3], t = kInf;
       rotT(it.rot, d, ld);
       if (common) {
         std::copy(&local_o[3 * j], &local_o[3 * j] + 3, lo);
