@@ -1,12 +1,14 @@
 """Ray caster: analytic distances per geometry kind, exclusion, dynamic shapes, and agreement
-with ODE's own ray geom (pyODE) on the same shapes."""
+with ODE's own ray geom (pyODE) on the same shapes; every test on both cores (the compiled
+ray casting and the NumPy reference; test_raycast_core.py compares them directly)."""
 import math
 
 import numpy as np
 import pytest
 
 from ode_sim.description.model import Geometry, ModelError
-from ode_sim.engine.raycast import RayCaster, scan_directions
+from ode_sim.engine import raycast
+from ode_sim.engine.raycast import scan_directions
 from ode_sim.engine.scene import ShapeInstance
 from ode_sim.description.transforms import Pose
 
@@ -56,22 +58,37 @@ def box_mesh(size):
     return v, f
 
 
+CORE = {}
+
+
+@pytest.fixture(autouse=True, params=['compiled', 'python'])
+def core(request):
+    CORE['now'] = request.param
+    yield request.param
+    CORE.clear()
+
+
+def make(shapes):
+    """A RayCaster on the core of the running test."""
+    return raycast.RayCaster(shapes, core=CORE['now'])
+
+
 RING = np.array([[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]], dtype=float)
 
 
 def test_walls_in_four_directions():
     shapes = [box('east', (0.2, 10, 2), (3.1, 0, 0)), box('north', (10, 0.2, 2), (0, 2.1, 0)),
               box('west', (0.2, 10, 2), (-4.1, 0, 0)), box('south', (10, 0.2, 2), (0, -1.6, 0))]
-    d = RayCaster(shapes).cast(np.zeros(3), RING, 10.0)
+    d = make(shapes).cast(np.zeros(3), RING, 10.0)
     np.testing.assert_allclose(d, [3.0, 2.0, 4.0, 1.5], atol=1e-9)
 
 
 def test_nothing_within_range_is_inf_and_max_range_is_respected():
-    rc = RayCaster([box('east', (0.2, 10, 2), (3.1, 0, 0))])
+    rc = make([box('east', (0.2, 10, 2), (3.1, 0, 0))])
     d = rc.cast(np.zeros(3), RING, 10.0)
     assert d[0] == pytest.approx(3.0) and np.all(np.isinf(d[1:]))
     assert np.isinf(rc.cast(np.zeros(3), RING, 2.9)[0])
-    assert RayCaster([]).cast([0, 0, 0], RING, 5.0).tolist() == [np.inf] * 4
+    assert make([]).cast([0, 0, 0], RING, 5.0).tolist() == [np.inf] * 4
 
 
 def test_sphere_and_cylinder_analytic():
@@ -79,7 +96,7 @@ def test_sphere_and_cylinder_analytic():
               shape('can', Geometry('cylinder', radius=0.3, length=1.0), Pose((0, 3, 0))),
               shape('lying', Geometry('cylinder', radius=0.25, length=2.0),
                     Pose.from_xyz_rpy((-2, 0, 0), (math.pi / 2, 0, 0)))]
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     d = rc.cast(np.zeros(3), RING, 10.0)
     assert d[0] == pytest.approx(1.5, abs=1e-12)
     assert d[1] == pytest.approx(2.7, abs=1e-12)
@@ -95,29 +112,29 @@ def test_sphere_and_cylinder_analytic():
 
 def test_mesh_hits_analytic_and_inside_reports_exit():
     v, f = box_mesh((1, 2, 3))
-    rc = RayCaster([shape('crate', Geometry('mesh', vertices=v, faces=f), Pose((4, 0, 0)))])
+    rc = make([shape('crate', Geometry('mesh', vertices=v, faces=f), Pose((4, 0, 0)))])
     d = rc.cast(np.zeros(3), RING, 10.0)
     assert d[0] == pytest.approx(3.5, abs=1e-12) and np.all(np.isinf(d[1:]))
     d = rc.cast([4, 0, 0], RING, 10.0)        # from inside: the nearest face ahead
     np.testing.assert_allclose(d, [0.5, 1.0, 0.5, 1.0], atol=1e-12)
     v, f = uv_sphere(1.0, 16, 32)
-    rc = RayCaster([shape('ball', Geometry('mesh', vertices=v, faces=f), Pose((0, 0, 5)))])
+    rc = make([shape('ball', Geometry('mesh', vertices=v, faces=f), Pose((0, 0, 5)))])
     d = rc.cast(np.zeros(3), [[0, 0, 1]], 10.0)
     assert d[0] == pytest.approx(4.0, abs=1e-12)   # a vertex sits on the pole
 
 
 def test_solids_from_inside_report_the_exit_point():
     shapes = [box('b', (2, 2, 2), (0, 0, 0)), ]
-    np.testing.assert_allclose(RayCaster(shapes).cast(np.zeros(3), RING, 5), [1, 1, 1, 1])
+    np.testing.assert_allclose(make(shapes).cast(np.zeros(3), RING, 5), [1, 1, 1, 1])
     s = [shape('s', Geometry('sphere', radius=2.0), Pose((0.5, 0, 0)))]
-    np.testing.assert_allclose(RayCaster(s).cast(np.zeros(3), RING[:1], 5), [2.5])
+    np.testing.assert_allclose(make(s).cast(np.zeros(3), RING[:1], 5), [2.5])
     c = [shape('c', Geometry('cylinder', radius=1.0, length=4.0), Pose())]
-    np.testing.assert_allclose(RayCaster(c).cast(np.zeros(3), [[1, 0, 0], [0, 0, 1]], 5),
+    np.testing.assert_allclose(make(c).cast(np.zeros(3), [[1, 0, 0], [0, 0, 1]], 5),
                                [1.0, 2.0])
 
 
 def test_plane_is_two_sided_for_rays():
-    rc = RayCaster([shape('ground', Geometry('plane', normal=(0, 0, 1)), Pose((0, 0, -1)))])
+    rc = make([shape('ground', Geometry('plane', normal=(0, 0, 1)), Pose((0, 0, -1)))])
     d = rc.cast([[0, 0, 0], [0, 0, -2], [0, 0, -2], [0, 0, 0]],
                 [[0, 0, -1], [0, 0, 1], [0, 0, -1], [1, 0, 0]], 10.0)
     assert d[0] == pytest.approx(1.0) and d[1] == pytest.approx(1.0)
@@ -129,18 +146,18 @@ def test_plane_is_two_sided_for_rays():
 def test_rotated_box():
     # a 2 x 0.2 wall at x = 2 turned 45 degrees about Z: the ray along X meets its face
     # where x - 2 = -(0.1 / cos 45)
-    rc = RayCaster([box('w', (0.2, 2, 1), (2, 0, 0), (0, 0, math.pi / 4))])
+    rc = make([box('w', (0.2, 2, 1), (2, 0, 0), (0, 0, math.pi / 4))])
     d = rc.cast(np.zeros(3), RING[:1], 10.0)
     assert d[0] == pytest.approx(2 - 0.1 * math.sqrt(2), abs=1e-12)
     # box rolled 90 degrees about X: its 3 m long Z side now lies along Y
-    rc = RayCaster([box('w', (0.5, 0.5, 3.0), (0, 4, 0), (math.pi / 2, 0, 0))])
+    rc = make([box('w', (0.5, 0.5, 3.0), (0, 4, 0), (math.pi / 2, 0, 0))])
     assert rc.cast(np.zeros(3), RING[1:2], 10.0)[0] == pytest.approx(2.5, abs=1e-12)
 
 
 def test_exclusion_by_pairs_and_callable():
     shapes = [box('own', (0.3, 0.3, 0.3), (0, 0, 0), model='robot', link='base_scan'),
               box('far', (0.2, 10, 2), (3.1, 0, 0))]
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     assert rc.cast(np.zeros(3), RING[:1], 10.0)[0] == pytest.approx(0.15)
     assert rc.cast(np.zeros(3), RING[:1], 10.0,
                    exclude={('robot', 'base_scan')})[0] == pytest.approx(3.0)
@@ -152,7 +169,7 @@ def test_exclusion_by_pairs_and_callable():
                link='base_scan'),
          shape('own2', Geometry('mesh', vertices=v, faces=f), link_pose=lambda: Pose(),
                model='robot', link='base_scan'), shapes[1]]
-    rc = RayCaster(m)
+    rc = make(m)
     assert rc.cast(np.zeros(3), RING[:1], 10.0)[0] == pytest.approx(0.15)
     assert rc.cast(np.zeros(3), RING[:1], 10.0,
                    exclude={('robot', 'base_scan')})[0] == pytest.approx(3.0)
@@ -168,7 +185,7 @@ def test_dynamic_shapes_are_reposed_on_every_cast():
                     local=Pose((0, -2, 0))),
               shape('can', Geometry('cylinder', radius=0.1, length=1),
                     link_pose=lambda: where['p'], local=Pose((-6, 0, 0)))]
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     o = np.zeros(3)
     dirs = np.array([[1, 0, 0], [3, 2, 0], [3, -2, 0], [-1, 0, 0]], float)
     dirs /= np.linalg.norm(dirs, axis=1)[:, None]
@@ -182,7 +199,7 @@ def test_dynamic_shapes_are_reposed_on_every_cast():
 
 
 def test_rays_per_origin_and_bad_input():
-    rc = RayCaster([box('east', (0.2, 10, 2), (3.1, 0, 0))])
+    rc = make([box('east', (0.2, 10, 2), (3.1, 0, 0))])
     d = rc.cast([[0, 0, 0], [1, 0, 0], [2.5, 1, 0]], [[1, 0, 0]] * 3, 10.0)
     np.testing.assert_allclose(d, [3.0, 2.0, 0.5])
     with pytest.raises(ValueError):
@@ -192,9 +209,9 @@ def test_rays_per_origin_and_bad_input():
     # directions that are not unit vectors still give distances
     np.testing.assert_allclose(rc.cast(np.zeros(3), [[2, 0, 0], [0.5, 0, 0]], 10.0), [3, 3])
     with pytest.raises(ModelError, match='torus'):
-        RayCaster([shape('x', Geometry('torus'))])
+        make([shape('x', Geometry('torus'))])
     with pytest.raises(ModelError, match='no triangles'):
-        RayCaster([shape('x', Geometry('mesh', uri='model://x/a.dae'))])
+        make([shape('x', Geometry('mesh', uri='model://x/a.dae'))])
 
 
 def test_scan_directions_order_matches_gazebo():
@@ -277,7 +294,7 @@ def test_agrees_with_ode_ray_geom():
     import ode   # Debian's python3-pyode: missing = broken install
     rng = np.random.default_rng(7)
     shapes = _ode_scene()
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     n = 80
     origins = rng.uniform(-0.4, 0.4, (n, 3))
     dirs = rng.normal(size=(n, 3))
@@ -297,7 +314,7 @@ def test_agrees_with_ode_for_a_scan_from_one_origin(origin):
     shapes, with and without a minimum range."""
     import ode   # Debian's python3-pyode: missing = broken install
     shapes = _ode_scene()
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     yaw = np.linspace(-math.pi, math.pi, 181)
     pitch = np.repeat([-0.3, 0.0, 0.2], len(yaw))
     yaw = np.tile(yaw, 3)
@@ -328,7 +345,7 @@ def test_one_origin_path_equals_the_per_ray_path_on_a_dense_scan():
                                 Pose(xyz)))
         else:
             shapes.append(shape('m%d' % i, Geometry('mesh', vertices=v, faces=f), Pose(xyz)))
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     yaw = np.tile(np.linspace(-math.pi, math.pi, 3601), 3)
     pitch = np.repeat([-0.05, 0.0, 0.1], 3601)
     dirs = np.stack([np.cos(pitch) * np.cos(yaw), np.cos(pitch) * np.sin(yaw), np.sin(pitch)],
@@ -365,7 +382,7 @@ def test_shapes_of_one_moving_link_follow_it():
                     local=Pose((1, 0, 0)), model='bot', link='base'),
               shape('d', Geometry('mesh', vertices=v, faces=f), link_pose=link.pose,
                     local=Pose((0, 0, 1)), model='bot', link='base')]
-    rc = RayCaster(shapes)
+    rc = make(shapes)
     Link.pose_now = Pose.from_xyz_rpy((0, 0, 0), (0, 0, math.pi / 2))   # turned left
     Link.calls = 0
     d = rc.cast(np.zeros(3), RING, 10.0)

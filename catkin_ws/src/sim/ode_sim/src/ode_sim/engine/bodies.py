@@ -57,6 +57,11 @@ class SimLink:
         b = self.body
         return Pose(b.getPosition(), ros_q(b.getQuaternion())) * self._com_inv
 
+    def body_frame(self):
+        """(ODE body, the link frame in the body's frame) for batched pose reads: pose() is
+        the body's pose times this; None for a static link (rayprims.Posing uses it)."""
+        return None if self.body is None else (self.body, self._com_inv)
+
     def frame_pose(self, name):
         """A frame lumped into this link (URDF fixed joint) or the link itself, in the world."""
         if name == self.name or name not in self.desc.lumped:

@@ -241,8 +241,11 @@ class LaserModel:
         retro = np.zeros(len(dist))
         hit = who >= 0
         if hit.any():
-            table = np.array([float(getattr(s, 'laser_retro', 0.0) or 0.0)
-                              for s in caster.shapes])
+            if hasattr(caster, 'laser_retro'):
+                table = caster.laser_retro()
+            else:
+                table = np.array([float(getattr(s, 'laser_retro', 0.0) or 0.0)
+                                  for s in caster.shapes])
             retro[hit] = table[who[hit]]
         return self.to_ranges(dist, retro)
 

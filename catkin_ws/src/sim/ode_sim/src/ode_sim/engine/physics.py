@@ -33,7 +33,8 @@ class PhysicsWorld:
 
     def __init__(self, physics, gravity=(0.0, 0.0, -9.8), core='compiled'):
         """core: 'compiled' (the step loop in C++, engine/core) or 'python' (the same loop on
-        PyODE: the reference the compiled core is tested against)."""
+        PyODE: the reference the compiled core is tested against). The sensors' ray casting
+        (PluginContext.raycaster) follows it: RayCaster(core=pw.core)."""
         if core not in ('compiled', 'python'):
             raise ValueError("PhysicsWorld core must be 'compiled' or 'python', got %r" % (core,))
         self.physics = physics

@@ -1,5 +1,10 @@
 """Ray casting against the simulator's collision shapes, vectorised with numpy.
 
+This module is RayCaster's interface and its NumPy implementation (core='python': the
+reference); the default core='compiled' does the same casting in the engine's compiled core
+(raycore.py, core/raycast.cpp), one call per scan, with the same results
+(test/test_raycast_core.py).
+
 `RayCaster(shapes).cast(origins, directions, max_range, exclude)` returns, per ray, the distance
 to the first collision surface (np.inf when nothing is hit within max_range). It is what the
 lidar (ray sensor) uses, and it hits the very geometry the physics collides with: the shapes
@@ -26,7 +31,9 @@ first-contact shortcut and no back-face culling, and dGeomRaySetClosestHit(ray, 
     at distance >= min_range. Gazebo starts its rays at <range><min> (laser.py), which is what
     `min_range` gives without moving the origins. Gazebo does NOT exclude the sensor's own
     link; `exclude` lets a caller drop shapes (e.g. the sensor's own link).
-  * Hits count when min_range <= distance <= max_range.
+  * Hits count when min_range <= distance < max_range. The nearest wins; on a tie the first
+    in the caster's order: boxes, spheres, cylinders (rays from one origin: static ones
+    first), then planes, then meshes (the lowest triangle of a hierarchy).
 
 How it is fast enough (bench/raycast): when all rays share one origin (a lidar scan; also
 `min_range` instead of moved origins), boxes, spheres, cylinders and the leaves of the mesh
@@ -197,14 +204,23 @@ class _Items:
 
 
 class RayCaster:
-    """First-hit ray casting against a list of ShapeInstance (collision shapes)."""
+    """First-hit ray casting against a list of ShapeInstance (collision shapes).
 
-    def __init__(self, shapes):
+    core: 'compiled' (the default: the casting in the engine's compiled core, raycore.py and
+    core/raycast.cpp) or 'python' (the NumPy implementation in this module: the reference the
+    compiled one is tested against). PhysicsWorld(core=...) selects it for the simulator's
+    sensors. Both give the same distances and shapes (test/test_raycast_core.py)."""
+
+    def __init__(self, shapes, core='compiled'):
+        if core not in ('compiled', 'python'):
+            raise ValueError("RayCaster core must be 'compiled' or 'python', got %r" % (core,))
+        self.core = core
         self.set_shapes(shapes)
 
     def set_shapes(self, shapes):
         self.shapes = list(shapes)
         self._pairs = [(s.model, s.link) for s in self.shapes]
+        self._retro = None
         by_kind = {k: [] for k in KINDS}
         for i, s in enumerate(self.shapes):
             kind = s.geometry.kind
@@ -212,6 +228,11 @@ class RayCaster:
                 raise ModelError('%s: geometry kind %r cannot be ray cast (known: %s)'
                                  % (s.key, kind, ', '.join(KINDS)))
             by_kind[kind].append((i, s))
+        if self.core == 'compiled':
+            from ode_sim.engine.raycore import CompiledRays
+            self._compiled = CompiledRays(self.shapes, by_kind)
+            return
+        self._compiled = None
         # analytic shapes: dense groups, static and dynamic apart; the static solids also as
         # items culled per ray fan
         self._groups = [_Group(k, by_kind[k]) for k in ('box', 'sphere', 'cylinder', 'plane')
@@ -238,6 +259,13 @@ class RayCaster:
         self._forest.freeze()
         self._static_leaves = (self._forest.leaves_of(self._static_root)
                                if self._static_root is not None else None)
+
+    def laser_retro(self):
+        """(len(shapes),) the shapes' <laser_retro> (the lidar's intensity of a hit)."""
+        if self._retro is None:
+            self._retro = np.array([float(getattr(s, 'laser_retro', 0.0) or 0.0)
+                                    for s in self.shapes])
+        return self._retro
 
     def _excluded(self, exclude):
         if exclude is None:
@@ -269,6 +297,8 @@ class RayCaster:
         if n == 0 or not max_range >= tmin:
             return np.full(n, np.inf), who
         excluded = self._excluded(exclude)
+        if self._compiled is not None:
+            return self._compiled.cast_hits(o, d, common, tmin, max_range, excluded)
         fan = Fan(common, d) if common is not None else None
 
         def merge(t, k):

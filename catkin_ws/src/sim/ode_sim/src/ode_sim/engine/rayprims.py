@@ -5,6 +5,8 @@ import math
 
 import numpy as np
 
+from ode_sim.description.transforms import Pose
+
 LEAF = 8        # triangles per BVH leaf (at most)
 BRANCH = 8      # children per inner BVH node (at most): 3 levels of binary median splits
 TOL = 1e-12
@@ -68,32 +70,78 @@ def pose_arrays(shapes):
 class Posing:
     """World poses of dynamic shapes, fast: each distinct link_pose callable (equal bound
     methods count as one) is called once per cast and composed with the shapes' fixed local
-    poses in one batch."""
+    poses in one batch. A static shape among them (a group of one kind with static and dynamic
+    shapes) keeps its static link pose."""
 
     def __init__(self, shapes):
         slot = {}
         self.calls = []
         idx = []
         for s in shapes:
-            key = s.link_pose                       # bound methods of one link compare equal
-            try:
-                hash(key)
-            except TypeError:
-                key = ('id', id(key))
+            if s.link_pose is None:
+                key = ('static', id(s))
+                call = (lambda pose=s.static_pose: pose)
+            else:
+                key = call = s.link_pose            # bound methods of one link compare equal
+                try:
+                    hash(key)
+                except TypeError:
+                    key = ('id', id(key))
             if key not in slot:
                 slot[key] = len(self.calls)
-                self.calls.append(s.link_pose)
+                self.calls.append(call)
             idx.append(slot[key])
-        self.idx = np.array(idx, dtype=np.int64)
-        self.local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
-        self.local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
+        # a simulated link's pose() (engine.bodies.SimLink) is read from its ODE body in one
+        # batch: position and quaternion; the link frame's fixed offset in the body frame is
+        # folded into the shapes' local poses
+        bodies, offsets, order = [], [], []
+        generic = []
+        for j, f in enumerate(self.calls):
+            owner = getattr(f, '__self__', None)
+            frame = getattr(owner, 'body_frame', None)
+            src = frame() if getattr(f, '__name__', '') == 'pose' and callable(frame) else None
+            if src is not None:
+                bodies.append(src[0])
+                offsets.append(src[1])
+                order.append(j)
+            else:
+                generic.append(j)
+        self.bodies = bodies
+        self.generic = [self.calls[j] for j in generic]
+        # link rows: bodies first, then the other callables; idx maps shapes to link rows
+        row = {j: r for r, j in enumerate(order + generic)}
+        self.idx = np.array([row[i] for i in idx], dtype=np.int64)
+        off = offsets + [Pose()] * len(generic)
+        off_rot = np.array([o.rotation() for o in off]).reshape(-1, 3, 3)[self.idx]
+        off_pos = np.array([o.p for o in off]).reshape(-1, 3)[self.idx]
+        local_rot = np.array([s.local.rotation() for s in shapes]).reshape(-1, 3, 3)
+        local_pos = np.array([s.local.p for s in shapes]).reshape(-1, 3)
+        # each shape's pose in its row's frame (the body's, or the link's for the others)
+        self.local_rot = np.matmul(off_rot, local_rot)
+        self.local_pos = off_pos + np.einsum('kij,kj->ki', off_rot, local_pos)
+
+    def links(self):
+        """The rows' poses now: unit quaternions (L, 4) x y z w and positions (L, 3)."""
+        qs, ps = [], []
+        if self.bodies:
+            q = np.array([b.getQuaternion() for b in self.bodies])[:, (1, 2, 3, 0)]   # ODE: w x y z
+            q /= np.sqrt(np.einsum('ij,ij->i', q, q))[:, None]
+            qs.append(q)
+            ps.append(np.array([b.getPosition() for b in self.bodies]))
+        if self.generic:
+            poses = [f() for f in self.generic]
+            qs.append(np.array([p.q for p in poses]))
+            ps.append(np.array([p.p for p in poses]))
+        if len(qs) == 1:
+            return qs[0], ps[0]
+        return np.concatenate(qs), np.concatenate(ps)
 
     def __call__(self):
-        poses = [f() for f in self.calls]
-        lrot = quat_matrices(np.array([p.q for p in poses]))[self.idx]
-        lpos = np.array([p.p for p in poses])[self.idx]
+        """World rotations (K, 3, 3) and positions (K, 3) of the shapes now."""
+        q, p = self.links()
+        lrot = quat_matrices(q)[self.idx]
         rot = np.matmul(lrot, self.local_rot)
-        pos = lpos + np.einsum('kij,kj->ki', lrot, self.local_pos)
+        pos = p[self.idx] + np.einsum('kij,kj->ki', lrot, self.local_pos)
         return rot, pos
 
 
@@ -281,8 +329,9 @@ def expand(ids, starts, counts):
 
 
 def first_per_ray(r, t, tri):
-    """Among candidate hits (ray r, distance t, triangle tri): the nearest per ray."""
-    order = np.lexsort((t, r))
+    """Among candidate hits (ray r, distance t, triangle or item tri): the nearest per ray;
+    on a tie the lowest tri (the first in the caster's order, as the compiled core)."""
+    order = np.lexsort((tri, t, r))
     r, t, tri = r[order], t[order], tri[order]
     first = np.ones(len(r), dtype=bool)
     first[1:] = r[1:] != r[:-1]

@@ -1,5 +1,6 @@
 // pybind11 module ode_sim.engine._core: the Stepper over raw ODE ids (integers) that
-// engine/compiled.py takes from the PyODE objects PhysicsWorld built.
+// engine/compiled.py takes from the PyODE objects PhysicsWorld built, and the RayScene of the
+// lidar's ray casting (engine/raycore.py).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -7,12 +8,17 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
 #include <tuple>
 
+#include "raycast.h"
 #include "stepper.h"
 
 namespace py = pybind11;
 using ode_sim::ActiveJoint;
+using ode_sim::RayScene;
 using ode_sim::Stepper;
 using ode_sim::Surface;
 
@@ -33,6 +39,18 @@ std::vector<dBodyID> bodies(const std::vector<uintptr_t>& ids) {
   out.reserve(ids.size());
   for (auto v : ids) out.push_back(as<dBodyID>(v));
   return out;
+}
+
+template <typename T>
+using CArray = py::array_t<T, py::array::c_style | py::array::forcecast>;
+
+// a C-ordered array's elements, checked to number `n` (n < 0: any)
+template <typename T>
+std::vector<T> flat(const CArray<T>& a, py::ssize_t n, const char* what) {
+  if (n >= 0 && a.size() != n)
+    throw std::invalid_argument(std::string("RayScene: ") + what + ": expected " +
+                                std::to_string(n) + " values, got " + std::to_string(a.size()));
+  return std::vector<T>(a.data(), a.data() + a.size());
 }
 
 using JointTuple = std::tuple<uintptr_t, bool, std::optional<double>, double, double,
@@ -134,4 +152,88 @@ PYBIND11_MODULE(_core, m) {
         }
         return out;
       });
+
+  py::class_<RayScene>(m, "RayScene",
+                       "The shapes of a RayCaster (engine/raycore.py) in the compiled core")
+      .def(py::init<int64_t>(), py::arg("shapes"))
+      .def("set_items",
+           [](RayScene& r, const CArray<int>& code, const CArray<int64_t>& shape,
+              const CArray<double>& p, const CArray<int>& slot, const CArray<double>& rot,
+              const CArray<double>& pos) {
+             const py::ssize_t k = code.size();
+             r.setItems(flat(code, k, "item codes"), flat(shape, k, "item shapes"),
+                        flat(p, 3 * k, "item parameters"), flat(slot, k, "item slots"),
+                        flat(rot, 9 * k, "item rotations"), flat(pos, 3 * k, "item positions"));
+           })
+      .def("set_planes",
+           [](RayScene& r, const CArray<int64_t>& shape, const CArray<double>& normal,
+              const CArray<int>& slot, const CArray<double>& rot, const CArray<double>& pos) {
+             const py::ssize_t k = shape.size();
+             r.setPlanes(flat(shape, k, "plane shapes"), flat(normal, 3 * k, "plane normals"),
+                         flat(slot, k, "plane slots"), flat(rot, 9 * k, "plane rotations"),
+                         flat(pos, 3 * k, "plane positions"));
+           })
+      .def("set_forest",
+           [](RayScene& r, const CArray<double>& lo, const CArray<double>& hi,
+              const CArray<int64_t>& first, const CArray<int64_t>& count,
+              const CArray<uint8_t>& leaf, const CArray<double>& v0, const CArray<double>& e1,
+              const CArray<double>& e2, const CArray<int64_t>& owner) {
+             const py::ssize_t m = first.size(), t = owner.size();
+             r.setForest(flat(lo, 3 * m, "node lo"), flat(hi, 3 * m, "node hi"),
+                         flat(first, m, "node first"), flat(count, m, "node count"),
+                         flat(leaf, m, "node leaf"), flat(v0, 3 * t, "triangle v0"),
+                         flat(e1, 3 * t, "triangle e1"), flat(e2, 3 * t, "triangle e2"),
+                         flat(owner, t, "triangle owner"));
+           })
+      .def("set_meshes",
+           [](RayScene& r, int64_t static_root, const CArray<int64_t>& shape,
+              const CArray<int64_t>& root, const CArray<int>& slot) {
+             const py::ssize_t k = shape.size();
+             r.setMeshes(static_root, flat(shape, k, "mesh shapes"), flat(root, k, "mesh roots"),
+                         flat(slot, k, "mesh slots"));
+           })
+      .def_property_readonly("shapes", &RayScene::shapes)
+      .def("set_slots",
+           [](RayScene& r, const CArray<int64_t>& row, const CArray<double>& local_rot,
+              const CArray<double>& local_pos, int64_t links) {
+             const py::ssize_t k = row.size();
+             r.setSlots(flat(row, k, "slot rows"), flat(local_rot, 9 * k, "slot rotations"),
+                        flat(local_pos, 3 * k, "slot positions"), links);
+           })
+      .def_property_readonly("dynamic_slots", &RayScene::dynamicSlots)
+      .def_property_readonly("link_rows", &RayScene::linkRows)
+      .def(
+          "cast",
+          [](const RayScene& r, const CArray<double>& o, const CArray<double>& d, bool common,
+             double tmin, double max_range, const CArray<double>& link_q,
+             const CArray<double>& link_p, std::optional<CArray<uint8_t>> excluded) {
+            if (d.ndim() != 2 || d.shape(1) != 3)
+              throw std::invalid_argument("RayScene.cast: directions must be (N, 3)");
+            const py::ssize_t n = d.shape(0);
+            if (common ? o.size() < 3 : o.size() != 3 * n)
+              throw std::invalid_argument("RayScene.cast: origins must be (3,) or (N, 3)");
+            if (!r.ready())
+              throw std::invalid_argument("RayScene.cast: the dynamic slots have no link rows "
+                                          "(set_slots)");
+            const py::ssize_t links = r.linkRows();
+            if (link_q.size() != 4 * links || link_p.size() != 3 * links)
+              throw std::invalid_argument("RayScene.cast: expected the poses of " +
+                                          std::to_string(links) + " link rows");
+            if (excluded && excluded->size() != r.shapes())
+              throw std::invalid_argument("RayScene.cast: excluded needs one flag per shape");
+            py::array_t<double> t(n);
+            py::array_t<int64_t> who(n);
+            double* tp = t.mutable_data();
+            int64_t* wp = who.mutable_data();
+            const uint8_t* ex = excluded ? excluded->data() : nullptr;
+            {
+              py::gil_scoped_release release;
+              r.cast(o.data(), d.data(), n, common, tmin, max_range, link_q.data(),
+                     link_p.data(), ex, tp, wp);
+            }
+            return py::make_tuple(t, who);
+          },
+          py::arg("origins"), py::arg("directions"), py::arg("common"), py::arg("tmin"),
+          py::arg("max_range"), py::arg("link_q"), py::arg("link_p"),
+          py::arg("excluded") = py::none());
 }

@@ -61,10 +61,12 @@ class PluginContext:
         return self.physics.time
 
     def raycaster(self):
-        """A RayCaster over the current collision shapes of the world."""
+        """A RayCaster over the current collision shapes of the world, on the physics'
+        core: the compiled ray casting, or the NumPy reference with PhysicsWorld(core='python')."""
         from ode_sim.engine.raycast import RayCaster
         if self._raycaster is None:
-            self._raycaster = RayCaster(self.physics.collision_shapes())
+            self._raycaster = RayCaster(self.physics.collision_shapes(),
+                                        core=getattr(self.physics, 'core', 'compiled'))
             self._ray_version = self.physics.version
         elif self._ray_version != self.physics.version:
             self._raycaster.set_shapes(self.physics.collision_shapes())
