@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <vector>
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
 
 namespace {
 
@@ -18,7 +21,21 @@ struct Grid {
   Grid(const GmGrids* g, int i) : cells(g->cells[i]), w(g->w), h(g->h), ox(g->ox), oy(g->oy), delta(g->delta) {}
 };
 
+// Added to a full / not full cell's distance or coordinate: x + 0.0 is x, x + inf is inf.
+const double kNotFull[2] = {HUGE_VAL, 0.0};
+
 inline int cellOf(double v, double o, double d) { return static_cast<int>(std::floor((v - o) / d)); }
+
+// cellOf without the division where that cannot change the result: (v - o) * (1 / d) is within a
+// few ulps (< 1e-12 cells on any grid that fits in memory) of the quotient, so both have the same
+// floor unless the product is that close to a cell border; there the quotient decides.
+inline int cellOfFast(double v, double o, double d, double inv_d) {
+  const double t = (v - o) * inv_d;
+  const double f = std::floor(t);
+  const double frac = t - f;
+  if (frac > 1e-9 && frac < 1.0 - 1e-9) return static_cast<int>(f);
+  return cellOf(v, o, d);
+}
 
 // Cells the matcher's field reaches beyond the endpoints of the unmatched pose (the hill climbing
 // moves a pose by a few centimetres and turns it by a few hundredths of a radian).
@@ -40,7 +57,6 @@ inline double bestMu2(const Grid& g, double hx, double hy, const GmMatcherParams
   const int y0 = std::max(ihy - p->kernel, 0), y1 = std::min(ihy + p->kernel, g.h - 1);
   const double threshold = p->fullness;
   const double inf = HUGE_VAL;
-  static const double kNotFull[2] = {HUGE_VAL, 0.0};   // added to a cell's distance: not full, full
   double best = inf;
   for (int cy = y0; cy <= y1; ++cy) {
     const GmCell* row = g.cells + static_cast<long>(cy) * g.w;
@@ -70,6 +86,48 @@ inline void forEachBeam(const double* pose, const GmScan* scan, const GmMatcherP
   }
 }
 
+// The minimum squared distance from (hx, hy) to the 3 x 3 points (x, y) at rows[0..5],
+// rows[stride..], rows[2 stride..] (kernelSize 1, the default), or -1 if all are infinitely far.
+// With SSE2 two cells at a time: the same IEEE operations per lane, so the same result.
+inline double window3(const double* rows, long stride, double hx, double hy) {
+#ifdef __SSE2__
+  const __m128d h = _mm_set_pd(hy, hx);
+  __m128d best = _mm_set1_pd(HUGE_VAL);
+  const double* row = rows;
+  for (int r = 0; r < 3; ++r, row += stride) {
+    const __m128d a = _mm_sub_pd(_mm_loadu_pd(row), h);       // (ax, ay)
+    const __m128d b = _mm_sub_pd(_mm_loadu_pd(row + 2), h);   // (bx, by)
+    const __m128d a2 = _mm_mul_pd(a, a), b2 = _mm_mul_pd(b, b);
+    // (ax^2 + ay^2, bx^2 + by^2)
+    const __m128d d = _mm_add_pd(_mm_unpacklo_pd(a2, b2), _mm_unpackhi_pd(a2, b2));
+    best = _mm_min_pd(d, best);
+  }
+  // the third column: rows 0 and 1 together, row 2 alone
+  const __m128d c0 = _mm_sub_pd(_mm_loadu_pd(rows + 4), h), c1 = _mm_sub_pd(_mm_loadu_pd(rows + stride + 4), h);
+  const __m128d c02 = _mm_mul_pd(c0, c0), c12 = _mm_mul_pd(c1, c1);
+  best = _mm_min_pd(_mm_add_pd(_mm_unpacklo_pd(c02, c12), _mm_unpackhi_pd(c02, c12)), best);
+  const double* c2 = rows + 2 * stride + 4;
+  const double ex = c2[0] - hx, ey = c2[1] - hy;
+  double out = ex * ex + ey * ey;
+  const double lo = _mm_cvtsd_f64(best), hi = _mm_cvtsd_f64(_mm_unpackhi_pd(best, best));
+  out = lo < out ? lo : out;
+  out = hi < out ? hi : out;
+  return out < HUGE_VAL ? out : -1.0;
+#else
+  double best = HUGE_VAL;
+  for (int r = 0; r < 3; ++r, rows += stride) {
+    const double ax = rows[0] - hx, ay = rows[1] - hy;
+    const double bx = rows[2] - hx, by = rows[3] - hy;
+    const double cx = rows[4] - hx, cy = rows[5] - hy;
+    const double a = ax * ax + ay * ay, b = bx * bx + by * by, c = cx * cx + cy * cy;
+    best = a < best ? a : best;
+    best = b < best ? b : best;
+    best = c < best ? c : best;
+  }
+  return best < HUGE_VAL ? best : -1.0;
+#endif
+}
+
 // bestMu2 straight on the grid.
 struct GridLookup {
   const Grid& g;
@@ -88,6 +146,7 @@ struct FieldLookup {
   const GmMatcherParams* p;
   int x0 = 0, y0 = 0, w = 0, h = 0;   // the box in grid cells
   double* pts = nullptr;              // w * h * 2 doubles
+  double inv_delta = 1.0 / g.delta;
 
   // The box around the endpoints of the scan at pose, margin cells wider on every side.
   void fit(const double* pose, const GmScan* scan, int margin) {
@@ -116,24 +175,24 @@ struct FieldLookup {
       for (int k = 0; k < w; ++k) {
         const int cx = x0 + k;
         const GmCell& c = row[cx];
-        if (static_cast<double>(c.hits) > threshold * static_cast<double>(c.visits)) {
-          out[2 * k] = g.ox + cx * g.delta + c.mx;
-          out[2 * k + 1] = by + c.my;
-        } else {
-          out[2 * k] = HUGE_VAL;
-          out[2 * k + 1] = 0.0;
-        }
+        // x + 0.0 is x, x + inf is inf: a table, not a branch (fullness is unpredictable)
+        const bool full = static_cast<double>(c.hits) > threshold * static_cast<double>(c.visits);
+        out[2 * k] = (g.ox + cx * g.delta + c.mx) + kNotFull[full];
+        out[2 * k + 1] = by + c.my;
       }
     }
   }
 
   double mu2(double hx, double hy) const {
     const int k = p->kernel;
-    const int fx = cellOf(hx, g.ox, g.delta) - k - x0, fy = cellOf(hy, g.oy, g.delta) - k - y0;
+    const int fx = cellOfFast(hx, g.ox, g.delta, inv_delta) - k - x0;
+    const int fy = cellOfFast(hy, g.oy, g.delta, inv_delta) - k - y0;
     if (fx < 0 || fy < 0 || fx + 2 * k >= w || fy + 2 * k >= h) return bestMu2(g, hx, hy, p);
+    const double* cell0 = pts + 2 * (static_cast<long>(fy) * w + fx);
+    if (k == 1) return window3(cell0, 2L * w, hx, hy);
     double best = HUGE_VAL;
     for (int r = 0; r <= 2 * k; ++r) {
-      const double* cell = pts + 2 * (static_cast<long>(fy + r) * w + fx);
+      const double* cell = cell0 + 2L * r * w;
       for (int c = 0; c <= 2 * k; ++c, cell += 2) {
         const double mx = cell[0] - hx, my = cell[1] - hy;
         const double d = mx * mx + my * my;   // inf for a cell that is not full
