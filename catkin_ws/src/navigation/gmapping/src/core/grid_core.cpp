@@ -138,14 +138,19 @@ struct GridLookup {
 // The matcher's view of one particle's grid over a box of cells, built once per particle and
 // scan and read by every pose the hill climbing tries: per cell the mean endpoint's absolute
 // coordinates (ox + cx * delta + mx, oy + cy * delta + my, the same doubles bestMu2 computes), or
-// (inf, 0) for a cell that is not full, so that a window is a few loads and multiplications with
-// no fullness test. Windows reaching outside the box fall back to bestMu2 on the grid; either
-// way the result is bestMu2's, bit for bit.
+// (inf, finite) for a cell that is not full, so that a window is a few loads and multiplications
+// with no fullness test. The box is filled in tiles of 8 x 8 cells when a window first reads
+// them (a scan's endpoints lie on walls: most of its bounding box is never read). Windows
+// reaching outside the box fall back to bestMu2 on the grid; either way the result is bestMu2's,
+// bit for bit.
 struct FieldLookup {
+  static constexpr int kTileBits = 3;
   const Grid& g;
   const GmMatcherParams* p;
   int x0 = 0, y0 = 0, w = 0, h = 0;   // the box in grid cells
+  int tw = 0, th = 0;                 // the box in tiles
   double* pts = nullptr;              // w * h * 2 doubles
+  uint8_t* built = nullptr;           // tw * th flags
   double inv_delta = 1.0 / g.delta;
 
   // The box around the endpoints of the scan at pose, margin cells wider on every side.
@@ -156,23 +161,40 @@ struct FieldLookup {
       ax = std::min(ax, cx); bx = std::max(bx, cx);
       ay = std::min(ay, cy); by = std::max(by, cy);
     });
-    if (bx < ax || by < ay) { w = h = 0; return; }
+    w = h = tw = th = 0;
+    if (bx < ax || by < ay) return;
     const int m = margin + p->kernel;
     x0 = std::max(ax - m, 0);
     y0 = std::max(ay - m, 0);
     w = std::max(std::min(bx + m, g.w - 1) - x0 + 1, 0);
     h = std::max(std::min(by + m, g.h - 1) - y0 + 1, 0);
+    tw = (w + (1 << kTileBits) - 1) >> kTileBits;
+    th = (h + (1 << kTileBits) - 1) >> kTileBits;
   }
 
-  void build(double* buffer) {
-    pts = buffer;
+  // Uses points (w * h * 2 doubles) and flags (tw * th bytes); no tile is filled yet.
+  void attach(double* points, uint8_t* flags) {
+    pts = points;
+    built = flags;
+    std::fill(built, built + static_cast<long>(tw) * th, uint8_t(0));
+  }
+
+  void fillTile(int tx, int ty) {
     const double threshold = p->fullness;
-    for (int r = 0; r < h; ++r) {
+    const int r0 = ty << kTileBits, r1 = std::min(r0 + (1 << kTileBits), h);
+    const int k0 = tx << kTileBits, k1 = std::min(k0 + (1 << kTileBits), w);
+    // the tile's rows are far apart in the grid: ask for all of them before reading any
+    for (int r = r0; r < r1; ++r) {
+      const GmCell* row = g.cells + static_cast<long>(y0 + r) * g.w + x0;
+      __builtin_prefetch(row + k0);
+      __builtin_prefetch(row + k1 - 1);
+    }
+    for (int r = r0; r < r1; ++r) {
       const int cy = y0 + r;
       const GmCell* row = g.cells + static_cast<long>(cy) * g.w;
       const double by = g.oy + cy * g.delta;
       double* out = pts + 2L * r * w;
-      for (int k = 0; k < w; ++k) {
+      for (int k = k0; k < k1; ++k) {
         const int cx = x0 + k;
         const GmCell& c = row[cx];
         // x + 0.0 is x, x + inf is inf: a table, not a branch (fullness is unpredictable)
@@ -181,13 +203,25 @@ struct FieldLookup {
         out[2 * k + 1] = by + c.my;
       }
     }
+    built[ty * tw + tx] = 1;
   }
 
-  double mu2(double hx, double hy) const {
+  // Fills the tiles of the window of cells (fx .. fx + span, fy .. fy + span) of the box.
+  inline void need(int fx, int fy, int span) {
+    const int tx0 = fx >> kTileBits, tx1 = (fx + span) >> kTileBits;
+    const int ty0 = fy >> kTileBits, ty1 = (fy + span) >> kTileBits;
+    if (built[ty0 * tw + tx0] & built[ty0 * tw + tx1] & built[ty1 * tw + tx0] & built[ty1 * tw + tx1]) return;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx)
+        if (!built[ty * tw + tx]) fillTile(tx, ty);
+  }
+
+  double mu2(double hx, double hy) {
     const int k = p->kernel;
     const int fx = cellOfFast(hx, g.ox, g.delta, inv_delta) - k - x0;
     const int fy = cellOfFast(hy, g.oy, g.delta, inv_delta) - k - y0;
     if (fx < 0 || fy < 0 || fx + 2 * k >= w || fy + 2 * k >= h) return bestMu2(g, hx, hy, p);
+    need(fx, fy, 2 * k);
     const double* cell0 = pts + 2 * (static_cast<long>(fy) * w + fx);
     if (k == 1) return window3(cell0, 2L * w, hx, hy);
     double best = HUGE_VAL;
@@ -204,7 +238,7 @@ struct FieldLookup {
 };
 
 template <typename L>
-double score(const L& lookup, const double* pose, const GmScan* scan, const GmMatcherParams* p) {
+double score(L& lookup, const double* pose, const GmScan* scan, const GmMatcherParams* p) {
   double s = 0.0;
   forEachBeam(pose, scan, p, [&](double hx, double hy) {
     double mu2 = lookup.mu2(hx, hy);
@@ -214,7 +248,7 @@ double score(const L& lookup, const double* pose, const GmScan* scan, const GmMa
 }
 
 template <typename L>
-void likelihoodAndScore(const L& lookup, const double* pose, const GmScan* scan, const GmMatcherParams* p,
+void likelihoodAndScore(L& lookup, const double* pose, const GmScan* scan, const GmMatcherParams* p,
                         double* likelihood, double* score) {
   double l = 0.0, s = 0.0;
   const double no_hit = p->null_likelihood / p->lsigma;
@@ -280,26 +314,30 @@ extern "C" int gm_integrate(GmGrids* g, const double* poses, const GmScan* scan)
 extern "C" double gm_score(const GmGrids* g, int i, const double* pose, const GmScan* scan,
                            const GmMatcherParams* p) {
   const Grid grid(g, i);
-  return score(GridLookup{grid, p}, pose, scan, p);
+  GridLookup lookup{grid, p};
+  return score(lookup, pose, scan, p);
 }
 
 extern "C" void gm_likelihood_and_score(const GmGrids* g, int i, const double* pose, const GmScan* scan,
                                         const GmMatcherParams* p, double* likelihood, double* score) {
   const Grid grid(g, i);
-  likelihoodAndScore(GridLookup{grid, p}, pose, scan, p, likelihood, score);
+  GridLookup lookup{grid, p};
+  likelihoodAndScore(lookup, pose, scan, p, likelihood, score);
 }
 
 extern "C" void gm_optimize(const GmGrids* g, const double* poses, const GmScan* scan, const GmMatcherParams* p,
                             double* out_poses, double* out_scores, double* out_likelihood) {
   // moves in gmapping's order; move m ^ 1 undoes move m
   static const int kMoves[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<double> buffer;
+  std::vector<double> points;
+  std::vector<uint8_t> flags;
   for (int i = 0; i < g->n; ++i) {
     const Grid grid(g, i);
     FieldLookup field{grid, p};
     field.fit(poses + 3 * i, scan, kFieldMargin);
-    buffer.resize(2 * static_cast<size_t>(field.w) * field.h);
-    field.build(buffer.data());
+    points.resize(2 * static_cast<size_t>(field.w) * field.h);
+    flags.resize(static_cast<size_t>(field.tw) * field.th);
+    field.attach(points.data(), flags.data());
     double current[3] = {poses[3 * i], poses[3 * i + 1], poses[3 * i + 2]};
     double current_score = score(field, current, scan, p);
     double best_score = current_score;
