@@ -66,8 +66,8 @@ class GridSlam(object):
             ox = int(round((self.grids.origin[0] - new_origin[0]) / d))
             oy = int(round((self.grids.origin[1] - new_origin[1]) / d))
             h, w = self.grids.shape[1:]
-            for new, old in zip(grids.cells, self.grids.cells):
-                new[oy:oy + h, ox:ox + w] = old
+            for new, old in zip(grids.cells, self.grids.cells):    # as raw 12-byte cells (memcpy)
+                new.view('V12')[oy:oy + h, ox:ox + w] = old.view('V12')
         self.grids = grids
 
     def _register(self, scan, reach):
