@@ -1,12 +1,15 @@
 // The hot loops of slam_gmapping's particle filter, as a plain C ABI (loaded by the Python core
 // through ctypes): scan registration into every particle's grid, and gmapping's hill-climbing scan
-// matcher with its score / likelihood. No ROS, no allocation, no globals.
+// matcher with its score / likelihood. No ROS, no globals; gm_optimize allocates
+// one scratch buffer per call.
 //
-// Grids: n particles, each a row-major h x w block (row = y index) of uint16 hit and visit
-// counts; cell (0, 0)'s lower-left corner at (ox, oy) [m]; delta [m/cell]. A cell's fullness is
-// hits / visits (unknown: visits 0); mx/my hold the mean of the endpoints that hit a cell, as
-// offsets [m] from the cell's lower-left corner (gmapping's PointAccumulator). Poses are laser poses (x [m], y [m], theta [rad]) in the map
-// frame, one per particle (n x 3).
+// Grids: n particles, each its own row-major h x w block of cells (row = y index; the blocks
+// are separate allocations, so resampling shares or copies them per particle); cell (0, 0)'s
+// lower-left corner at (ox, oy) [m]; delta [m/cell]. A cell holds uint16 hit and visit counts
+// (fullness hits / visits; unknown: visits 0) and mx/my, the mean of the endpoints that hit it as
+// offsets [m] from the cell's lower-left corner (gmapping's PointAccumulator), side by side so
+// that the matcher reads one cell from one place. Poses are laser poses (x [m], y [m],
+// theta [rad]) in the map frame, one per particle (n x 3).
 #pragma once
 #include <stdint.h>
 
@@ -15,12 +18,14 @@ extern "C" {
 #endif
 
 typedef struct {
+  uint16_t hits, visits;
+  float mx, my;
+} GmCell;                 // 12 bytes, no padding (numpy: u2, u2, f4, f4)
+
+typedef struct {
   int n, h, w;
   double ox, oy, delta;
-  uint16_t* hits;
-  uint16_t* visits;
-  float* mx;
-  float* my;
+  GmCell** cells;         // n pointers, each to h * w cells
 } GmGrids;
 
 typedef struct {

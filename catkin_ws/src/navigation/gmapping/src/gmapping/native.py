@@ -7,14 +7,17 @@ import numpy as np
 LIBRARY = 'libgmapping_grid_core.so'
 
 _d = ctypes.POINTER(ctypes.c_double)
-_u16 = ctypes.POINTER(ctypes.c_uint16)
-_f32 = ctypes.POINTER(ctypes.c_float)
+
+
+# GmCell: one grid cell, 12 bytes (include/gmapping/grid_core.h)
+CELL = np.dtype([('hits', '<u2'), ('visits', '<u2'), ('mx', '<f4'), ('my', '<f4')])
+assert CELL.itemsize == 12
 
 
 class GmGrids(ctypes.Structure):
     _fields_ = [('n', ctypes.c_int), ('h', ctypes.c_int), ('w', ctypes.c_int),
                 ('ox', ctypes.c_double), ('oy', ctypes.c_double), ('delta', ctypes.c_double),
-                ('hits', _u16), ('visits', _u16), ('mx', _f32), ('my', _f32)]
+                ('cells', ctypes.POINTER(ctypes.c_void_p))]
 
 
 class GmScan(ctypes.Structure):
@@ -70,36 +73,59 @@ def _dptr(a):
     return a.ctypes.data_as(_d)
 
 
-class Grids(object):
-    """n particle grids: hits, visits (uint16) and the mean endpoint offsets mx, my (float32),
-    each (n, h, w) C-contiguous; origin (x, y) of cell (0, 0); delta [m]."""
+class _Field(object):
+    """grids.hits[i] / grids.visits[i] / grids.mx[i] / grids.my[i]: that field of particle i's
+    cells, an (h, w) view."""
 
-    def __init__(self, n, h, w, origin, delta):
-        self.hits = np.zeros((n, h, w), dtype=np.uint16)
-        self.visits = np.zeros((n, h, w), dtype=np.uint16)
-        self.mx = np.zeros((n, h, w), dtype=np.float32)
-        self.my = np.zeros((n, h, w), dtype=np.float32)
+    def __init__(self, grids, name):
+        self.grids, self.name = grids, name
+
+    def __getitem__(self, i):
+        return self.grids.cells[i][self.name]
+
+    def __len__(self):
+        return len(self.grids.cells)
+
+
+class Grids(object):
+    """n particle grids, each its own C-contiguous (h, w) array of CELL (hits, visits: uint16
+    counts; mx, my: float32 mean endpoint offsets); origin (x, y) of cell (0, 0); delta [m].
+    Particles may share an array only between a select() and the next write (see select)."""
+
+    def __init__(self, n, h, w, origin, delta, cells=None):
+        self.cells = [np.zeros((h, w), dtype=CELL) for _ in range(n)] if cells is None else cells
         self.origin = (float(origin[0]), float(origin[1]))
         self.delta = float(delta)
+        self._c = None
 
     @property
     def shape(self):
-        return self.hits.shape
+        h, w = self.cells[0].shape
+        return (len(self.cells), h, w)
 
-    def arrays(self):
-        return (self.hits, self.visits, self.mx, self.my)
+    hits = property(lambda self: _Field(self, 'hits'))
+    visits = property(lambda self: _Field(self, 'visits'))
+    mx = property(lambda self: _Field(self, 'mx'))
+    my = property(lambda self: _Field(self, 'my'))
 
     def select(self, idx):
-        """Copy of the grids of particles idx (resampling)."""
-        out = Grids.__new__(Grids)
-        out.hits, out.visits, out.mx, out.my = (np.ascontiguousarray(a[idx]) for a in self.arrays())
-        out.origin, out.delta = self.origin, self.delta
-        return out
+        """The grids of particles idx (resampling). A particle drawn once keeps its array (no
+        copy); each further draw of it gets a copy. The old Grids must not be used afterwards."""
+        taken = set()
+        cells = []
+        for j in idx:
+            j = int(j)
+            cells.append(self.cells[j].copy() if j in taken else self.cells[j])
+            taken.add(j)
+        return Grids(len(cells), 0, 0, self.origin, self.delta, cells=cells)
 
     def c(self):
-        n, h, w = self.hits.shape
-        return GmGrids(n, h, w, self.origin[0], self.origin[1], self.delta, self.hits.ctypes.data_as(_u16),
-                       self.visits.ctypes.data_as(_u16), self.mx.ctypes.data_as(_f32), self.my.ctypes.data_as(_f32))
+        if self._c is None:
+            n, h, w = self.shape
+            self._ptrs = (ctypes.c_void_p * n)(*[a.ctypes.data for a in self.cells])
+            self._c = GmGrids(n, h, w, self.origin[0], self.origin[1], self.delta,
+                              ctypes.cast(self._ptrs, ctypes.POINTER(ctypes.c_void_p)))
+        return self._c
 
 
 class Scan(object):

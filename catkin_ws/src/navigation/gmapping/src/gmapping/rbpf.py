@@ -66,8 +66,8 @@ class GridSlam(object):
             ox = int(round((self.grids.origin[0] - new_origin[0]) / d))
             oy = int(round((self.grids.origin[1] - new_origin[1]) / d))
             h, w = self.grids.shape[1:]
-            for new, old in zip(grids.arrays(), self.grids.arrays()):
-                new[:, oy:oy + h, ox:ox + w] = old
+            for new, old in zip(grids.cells, self.grids.cells):    # as raw 12-byte cells (memcpy)
+                new.view('V12')[oy:oy + h, ox:ox + w] = old.view('V12')
         self.grids = grids
 
     def _register(self, scan, reach):
@@ -165,8 +165,8 @@ class GridSlam(object):
         if self.grids is None:
             return None, None
         thresh = self.p.occ_thresh if occ_thresh is None else occ_thresh
-        i = self.best_index()
-        hits, visits = self.grids.hits[i].astype(np.float32), self.grids.visits[i]
+        cells = self.grids.cells[self.best_index()]
+        hits, visits = cells['hits'].astype(np.float32), cells['visits']
         grid = np.full(visits.shape, -1, dtype=np.int8)
         seen = visits > 0
         occ = np.zeros(visits.shape, dtype=np.float32)
