@@ -126,17 +126,25 @@ bash "$REPO/docker/docker_run.bash" "$RELEASE" bash -c "
     export ROS_MASTER_URI=http://localhost:$PORT
     roscore -p $PORT >/tmp/roscore.log 2>&1 &
     until rostopic list >/dev/null 2>&1; do sleep 0.5; done
-    rosrun turtlesim turtlesim_node >/tmp/turtlesim.log 2>&1 &
     rviz >/tmp/rviz.log 2>&1 &
     echo '$STAMP' > /root/workspace/from_container.txt
     sleep infinity" </dev/null >"$OUT/run.log" 2>&1 &
 RUN_PID=$!
 
 windows_up() {   # both windows mapped on the host's screen, and their pixels in a screenshot
-    local deadline=$(( $(now) + 180 ))
+    # Xvfb has no window manager: windows open at the top left, the last one on top. RViz comes
+    # first; once its window is up, turtlesim (500x500) opens over its corner through a second
+    # terminal (docker_new.bash), so that both backgrounds are visible.
+    local deadline=$(( $(now) + 180 )) turtle_started=""
     while [ "$(now)" -lt "$deadline" ]; do
         kill -0 "$RUN_PID" 2>/dev/null || { log "docker_run.bash exited: $(tail -n 5 "$OUT/run.log")"; return 1; }
         tree=$(DISPLAY="$DISP" xwininfo -root -tree 2>/dev/null)
+        if [ -z "$turtle_started" ] && grep -q 'RViz' <<<"$tree"; then
+            bash "$REPO/docker/docker_new.bash" "$RELEASE" bash -c \
+                "ROS_MASTER_URI=http://localhost:$PORT rosrun turtlesim turtlesim_node >/tmp/turtlesim.log 2>&1" \
+                </dev/null >>"$OUT/run.log" 2>&1 &
+            turtle_started=1
+        fi
         if grep -q '"TurtleSim"' <<<"$tree" && grep -q 'RViz' <<<"$tree"; then
             sleep 8        # let RViz draw its first frames
             import -display "$DISP" -window root "$OUT/screenshot.png" 2>/dev/null || return 1
