@@ -184,7 +184,7 @@ def test_bond_deletes_model_when_killed(sim, tmp_path, sig):
                  what='spawn_model -b to spawn')
         assert proc.alive() and not sim.requests(service='/gazebo/delete_model', model_name=name)
         os.kill(proc.pid, sig)
-        proc.popen.wait(15)
+        proc.popen.wait(60)       # a hang bound: deleting the model takes a service call
         assert proc.popen.returncode == 0, proc.output()
         assert sim.requests(service='/gazebo/delete_model', model_name=name), proc.output()
     finally:

@@ -10,9 +10,9 @@ import threading
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
+from course_testing.rosout import RosoutProbe, rosout_connected
 from control_msgs.msg import JointTrajectoryControllerState
 from controller_manager_msgs.srv import ListControllers, LoadController, SwitchController
 from geometry_msgs.msg import Twist, TwistStamped
@@ -36,15 +36,6 @@ def yaw_of(q):
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
-
-def rosout_connected(subscriber, node):
-    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
-    rosout node, so a line logged before that connection exists is never seen."""
-    try:
-        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
-    except Exception:
-        return False
-    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
 
 class DiffDriveTest(unittest.TestCase):
     @classmethod
@@ -70,6 +61,10 @@ class DiffDriveTest(unittest.TestCase):
         cls.load = rospy.ServiceProxy(CM + 'load_controller', LoadController)
         cls.switch = rospy.ServiceProxy(CM + 'switch_controller', SwitchController)
         cls.wait_for('/rosout of the diffbot', lambda: rosout_connected(cls.rosout, '/diffbot'))
+        # lines of /diffbot really arrive: its controller manager logs one for a controller
+        # without a type
+        cls.wait_for('a line of /diffbot on /rosout',
+                     RosoutProbe(cls.logs, "'rosout_probe'", lambda: cls.load('rosout_probe')))
         if MODE != 'fail':
             cls.wait_for('diffbot_controller running',
                          lambda: cls.state_of('diffbot_controller') == 'running')

@@ -7,9 +7,9 @@ import threading
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
+from course_testing.rosout import RosoutProbe, rosout_connected
 from control_msgs.msg import JointControllerState
 from controller_manager_msgs.srv import ListControllers, LoadController
 from rosgraph_msgs.msg import Log
@@ -21,15 +21,6 @@ RUNNING = ['joint_state_controller', 'position_controller', 'continuous_position
            'prismatic_position_controller', 'group_position_controller', 'effort_controller']
 
 
-
-def rosout_connected(subscriber, node):
-    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
-    rosout node, so a line logged before that connection exists is never seen."""
-    try:
-        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
-    except Exception:
-        return False
-    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
 
 class Fixture(object):
     def __init__(self):
@@ -100,6 +91,8 @@ class EffortControllersTest(unittest.TestCase):
         cls.f.wait_for('spawner starts every controller', all_running)
         cls.f.wait_for('first /joint_states', lambda: cls.f.joint_states is not None)
         cls.f.wait_for('/rosout of the robot', lambda: rosout_connected(cls.f.rosout, '/test_robot'))
+        cls.f.wait_for('a line of /test_robot on /rosout',
+                       RosoutProbe(cls.f.logs, "'rosout_probe'", lambda: cls.load('rosout_probe')))
 
     def test_position_controller_converges(self):
         f = self.f

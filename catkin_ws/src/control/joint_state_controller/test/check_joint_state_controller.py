@@ -5,9 +5,9 @@ import threading
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
+from course_testing.rosout import RosoutProbe, rosout_connected
 from controller_manager_msgs.srv import ListControllers, LoadController
 from rosgraph_msgs.msg import Log
 from sensor_msgs.msg import JointState
@@ -25,15 +25,6 @@ def wait_for(what, condition):
 
 
 
-def rosout_connected(subscriber, node):
-    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
-    rosout node, so a line logged before that connection exists is never seen."""
-    try:
-        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
-    except Exception:
-        return False
-    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
-
 class JointStateControllerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -47,6 +38,9 @@ class JointStateControllerTest(unittest.TestCase):
         rospy.wait_for_service('/controller_manager/list_controllers', WALL_TIMEOUT)
         wait_for('first messages', lambda: all(cls.msgs.values()))
         wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
+        wait_for('a line of /test_robot on /rosout', RosoutProbe(
+            cls.logs, "'rosout_probe'",
+            lambda: rospy.ServiceProxy('/controller_manager/load_controller', LoadController)('rosout_probe')))
 
     @classmethod
     def _js(cls, msg, topic):

@@ -5,9 +5,9 @@ import threading
 import time
 import unittest
 
-import rosgraph
 import rospy
 import rostest
+from course_testing.rosout import RosoutProbe, rosout_connected
 from control_msgs.msg import JointControllerState
 from controller_manager_msgs.srv import ListControllers, LoadController
 from rosgraph_msgs.msg import Log
@@ -19,15 +19,6 @@ RUNNING = ['joint_state_controller', 'wheel_controller', 'position_controller',
            'group_velocity_controller']
 
 
-
-def rosout_connected(subscriber, node):
-    """True once `subscriber` (on /rosout) is connected to `node`'s publisher: rostest runs no
-    rosout node, so a line logged before that connection exists is never seen."""
-    try:
-        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
-    except Exception:
-        return False
-    return any(c[1] == uri for c in subscriber.impl.get_stats_info())
 
 class VelocityControllersTest(unittest.TestCase):
     @classmethod
@@ -47,6 +38,9 @@ class VelocityControllersTest(unittest.TestCase):
             {c.name: c.state for c in lister().controller}.get(n) == 'running' for n in RUNNING))
         cls.wait_for('first /joint_states', lambda: cls.js is not None)
         cls.wait_for('/rosout of the robot', lambda: rosout_connected(cls.rosout, '/test_robot'))
+        cls.wait_for('a line of /test_robot on /rosout', RosoutProbe(
+            cls.logs, "'rosout_probe'",
+            lambda: rospy.ServiceProxy('/controller_manager/load_controller', LoadController)('rosout_probe')))
 
     @classmethod
     def _set(cls, msg, attr):

@@ -104,6 +104,18 @@ def main(argv=None):
     timer.timeout.connect(check)
     timer.start(200)
     app.exec_()
+    timer.stop()
     widget.shutdown()
     rospy.signal_shutdown('rqt_plot closed')
-    return status['code']
+    _exit_without_teardown(status['code'])
+
+
+def _exit_without_teardown(code):
+    """Leave once the window is closed and the node shut down, without Python's teardown of the
+    Qt objects: PyQt + pyqtgraph can crash there (SIGSEGV after a clean close, seen under load);
+    pyqtgraph's own remedy (pyqtgraph.exit) does the same. Output and ROS logs are flushed first."""
+    import logging
+    sys.stdout.flush()
+    sys.stderr.flush()
+    logging.shutdown()
+    os._exit(code)
