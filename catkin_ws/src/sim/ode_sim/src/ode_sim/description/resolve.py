@@ -92,8 +92,7 @@ class ModelPaths:
     @classmethod
     def only(cls, roots):
         """A lookup in exactly these directories, in this order."""
-        paths = cls(roots, env={}, library='')
-        return paths
+        return cls(roots, env={}, library='')
 
     @property
     def roots(self):
