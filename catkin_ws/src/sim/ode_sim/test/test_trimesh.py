@@ -10,6 +10,7 @@ import pytest
 from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, Physics,
                                        Surface)
 from ode_sim.description.transforms import Pose
+from ode_sim.description import sdf
 from ode_sim.description.urdf import parse_urdf
 from ode_sim.engine import _core
 from ode_sim.engine.physics import PhysicsWorld
@@ -199,3 +200,20 @@ def test_python_core_keeps_the_bounding_box_warning():
     pw = PhysicsWorld(Physics(), core='python')
     pw.add_model(m)
     assert any('simulated as its bounding box' in w for w in m.warnings)
+
+
+def test_sdf_world_with_a_scaled_obj_mesh_floor():
+    """An SDF world whose floor is an OBJ quad scaled 4 x 4 and raised 0.3 m: the box rests on
+    its triangles (the OBJ loader and <scale> of the description layer)."""
+    obj = os.path.join(HERE, 'fixtures', 'loaders', 'meshes', 'square.obj')
+    world = sdf.parse_world("""<sdf version="1.6"><world name="w">
+      <model name="floor"><static>true</static><pose>-2 -2 0.3 0 0 0</pose><link name="l">
+        <collision name="c"><geometry><mesh><uri>file://%s</uri><scale>4 4 1</scale></mesh>
+        </geometry></collision></link></model></world></sdf>""" % obj, 'w.world')
+    pw = PhysicsWorld(world.physics, world.gravity)
+    for m in world.models:
+        pw.add_model(m)
+    assert not any('bounding box' in w for m in world.models for w in m.warnings)
+    b = pw.add_model(box(z=1.0, size=(0.2, 0.2, 0.2)))
+    pw.step(1500)
+    assert b.pose().p[2] == pytest.approx(0.4, abs=0.005)
