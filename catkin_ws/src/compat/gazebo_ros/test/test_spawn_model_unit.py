@@ -1,6 +1,7 @@
 """spawn_model without a ROS master: arguments, model XML sources and checks, pose."""
 import io
 import math
+import os
 import random
 
 import pytest
@@ -136,7 +137,7 @@ def test_database_errors(tmp_path):
     with pytest.raises(sm.SpawnError, match='gone.sdf, which does not exist'):
         sm.find_database_model('broken', [str(tmp_path)])
     make_model(tmp_path, 'bad_config', {'model.sdf': '<sdf/>'}, '<model><sdf>')
-    with pytest.raises(sm.SpawnError, match='model.config: invalid XML'):
+    with pytest.raises(sm.SpawnError, match='model.config: malformed XML'):
         sm.find_database_model('bad_config', [str(tmp_path)])
 
 
@@ -144,6 +145,24 @@ def test_model_search_path(tmp_path):
     env = {'GAZEBO_MODEL_PATH': '/a::/b', 'HOME': '/home/u'}
     assert sm.model_search_path(env, ode_sim_models='/ode/models') == [
         '/a', '/b', '/home/u/.gazebo/models', '/ode/models']
+
+
+def test_database_lookup_is_the_simulators(tmp_path, monkeypatch):
+    """spawn_model -database and the simulator's model:// (ode_sim.description.resolve) are one
+    implementation: the same roots in the same order, the same model.config choice."""
+    from ode_sim.description import resolve
+    assert sm.model_sdf_file.__module__ == 'gazebo_ros.spawn_model'
+    make_model(tmp_path / 'env', 'cone', {'model.sdf': '<sdf>env</sdf>'})
+    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'cone', {'model.sdf': '<sdf>home</sdf>'})
+    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'box', {'model.sdf': '<sdf>home</sdf>'})
+    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(tmp_path / 'env'))
+    monkeypatch.setenv('HOME', str(tmp_path / 'home'))
+    paths = sm.model_search_path()
+    assert paths == resolve.ModelPaths().roots
+    assert paths[-1] == os.path.join(resolve.package_dir(), 'models')
+    for name in ('cone', 'box', 'ground_plane'):
+        assert sm.find_database_model(name, paths) == resolve.ModelPaths().model_sdf(name)
+    assert sm.find_database_model('cone', paths) == str(tmp_path / 'env' / 'cone' / 'model.sdf')
 
 
 # --------------------------------------------------------------------------------------- XML

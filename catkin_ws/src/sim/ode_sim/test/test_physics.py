@@ -165,13 +165,14 @@ def test_bad_models_are_refused_with_their_name():
         pw.add_model(bad)
 
 
-def test_mesh_collision_becomes_its_bounding_box_with_a_warning():
+def test_mesh_collision_becomes_its_bounding_box_with_a_warning_on_the_python_core():
+    """core='python' (PyODE has no trimesh); the compiled core: test_trimesh.py"""
     verts = np.array([[0, 0, 0], [1, 0, 0], [0, 2, 0], [0, 0, 3]], dtype=float) + [1, 1, 0]
     faces = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
     mesh = Geometry('mesh', uri='model://thing/meshes/t.stl', vertices=verts, faces=faces)
     m = box('thing', z=5.0)
     m.links[0].collisions = [Collision('c', mesh)]
-    pw = PhysicsWorld(Physics())
+    pw = PhysicsWorld(Physics(), core='python')
     pw.add_model(ground())
     sm = pw.add_model(m)
     shape = [s for s in pw.collision_shapes() if s.model == 'thing'][0]

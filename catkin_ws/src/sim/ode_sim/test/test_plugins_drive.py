@@ -259,3 +259,73 @@ def test_skid_steer_drives_four_wheels():
         cls(ctx, m, PluginDesc('sk', 'libgazebo_ros_skid_steer_drive.so', {
             'leftFrontJoint': 'left_front_joint', 'rightFrontJoint': 'right_front_joint',
             'leftRearJoint': 'x'}))
+
+
+def _tf_rows(transforms):
+    return [(t.header.stamp.to_nsec(), t.header.frame_id, t.child_frame_id,
+             round(t.transform.translation.x, 9), round(t.transform.translation.y, 9),
+             round(t.transform.rotation.z, 9)) for t in transforms]
+
+
+def test_one_tf_message_per_step_group_with_the_same_transforms():
+    """The node sends what the plugins broadcast during one step group as one /tf message
+    (rosio.TfBatch, flushed by SimNode.step_once); a listener sees the same transforms, stamps
+    and frames as with one message per plugin call. Nothing is sent without a subscriber."""
+    import threading
+    import types
+    from tf2_msgs.msg import TFMessage
+    from ode_sim.engine import _core
+    from ode_sim.ros.node import SimNode
+    from ode_sim.ros.plugins.rosio import MemoryIO, TfBatch
+
+    def drive_pair(tf):
+        _core.set_random_seed(1)        # quickStep's constraint order: the same in both runs
+        pw, m, ctx = world()
+        ctx.tf = tf
+        # two plugins broadcasting: odom -> base_footprint at 50 Hz, wheels at 20 Hz
+        a = diff_drive(ctx, m, publishOdomTF=1, updateRate=50)
+        b = diff_drive(ctx, m, publishTf=0, publishWheelTF=1, updateRate=20)
+        for p in (a, b):
+            p.on_cmd_vel(cmd(0.3, 0.5))
+        return pw, [a, b]
+
+    direct = []                                   # tf2_ros: one message per sendTransform call
+
+    class Direct:
+        def sendTransform(self, ts):
+            direct.append(list(ts))
+    pw, plugs = drive_pair(Direct())
+    run(pw, plugs, 0.5)
+
+    batch = TfBatch(MemoryIO())
+    assert batch.pub.name == '/tf' and batch.pub.data_class is TFMessage
+    pw2, plugs2 = drive_pair(batch)
+    node = types.SimpleNamespace(_pre=[], _post=plugs2, lock=threading.RLock(), physics=pw2,
+                                 step_hooks=[], tf=batch, publish_clock=lambda: None,
+                                 _limits=[p.next_update for p in plugs2], group_limits=[])
+    groups = 0
+    while pw2.steps < 500:
+        n = min(SimNode.group_size(node), 500 - pw2.steps)
+        SimNode.step_once(node, n)
+        groups += 1
+    sent = batch.pub.sent
+    assert groups < 500 / 5                       # really grouped
+    # the odometry (every 20 ms) and wheel (every 50 ms) broadcasts of one group: one message
+    stamps = sorted({call[0].header.stamp.to_nsec() for call in direct})
+    assert len(stamps) >= 25 and len(direct) >= len(stamps) + 5   # 100 ms: both plugins
+    assert len(sent) == len(stamps)
+    assert all(isinstance(m, TFMessage) for m in sent)
+    flat_direct = [t for call in direct for t in call]
+    flat_sent = [t for m in sent for t in m.transforms]
+    assert _tf_rows(flat_sent) == _tf_rows(flat_direct)
+    for m in sent:                                 # one stamp per message: one group
+        assert len({t.header.stamp for t in m.transforms}) == 1
+    both = [m for m in sent if len(m.transforms) == 3]
+    assert len(both) == len(direct) - len(stamps)
+    assert [t.child_frame_id for t in both[0].transforms] == \
+        ['base_footprint', 'left_wheel', 'right_wheel']
+    # no subscriber on /tf: nothing is published, nothing piles up
+    batch.pub.connections = 0
+    before = len(batch.pub.sent)
+    SimNode.step_once(node, 20)
+    assert len(batch.pub.sent) == before and batch.pending == []

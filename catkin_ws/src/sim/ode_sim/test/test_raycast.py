@@ -6,6 +6,7 @@ import math
 import numpy as np
 import pytest
 
+from ode_sim.description import meshgen
 from ode_sim.description.model import Geometry, ModelError
 from ode_sim.engine import raycast
 from ode_sim.engine.raycast import scan_directions
@@ -24,29 +25,9 @@ def box(key, size, xyz, rpy=(0, 0, 0), **kw):
 
 
 def uv_sphere(radius, n_lat=12, n_lon=24):
-    """A closed triangulated sphere (vertices, faces)."""
-    verts = [(0.0, 0.0, radius)]
-    for i in range(1, n_lat):
-        th = math.pi * i / n_lat
-        for j in range(n_lon):
-            ph = 2 * math.pi * j / n_lon
-            verts.append((radius * math.sin(th) * math.cos(ph),
-                          radius * math.sin(th) * math.sin(ph), radius * math.cos(th)))
-    verts.append((0.0, 0.0, -radius))
-    faces = []
-    for j in range(n_lon):
-        faces.append((0, 1 + j, 1 + (j + 1) % n_lon))
-    for i in range(n_lat - 2):
-        a, b = 1 + i * n_lon, 1 + (i + 1) * n_lon
-        for j in range(n_lon):
-            j2 = (j + 1) % n_lon
-            faces.append((a + j, b + j, b + j2))
-            faces.append((a + j, b + j2, a + j2))
-    last = len(verts) - 1
-    base = 1 + (n_lat - 2) * n_lon
-    for j in range(n_lon):
-        faces.append((base + j, last, base + (j + 1) % n_lon))
-    return np.array(verts), np.array(faces)
+    """A closed triangulated sphere (vertices, faces): the model library's ellipsoid."""
+    part = meshgen.ellipsoid((radius, radius, radius), segments=n_lon, rings=n_lat)
+    return part.vertices, part.faces
 
 
 def box_mesh(size):

@@ -11,7 +11,7 @@ import subprocess
 import numpy as np
 import pytest
 
-from ode_sim.description import sdf, urdf
+from ode_sim.description import meshgen, sdf, urdf
 from ode_sim.description.model import Geometry, ModelError, Physics, World
 from ode_sim.description.transforms import Pose
 from ode_sim.engine import _core
@@ -155,25 +155,8 @@ def test_simulated_links_are_posed_from_their_bodies(office):
 # every primitive and meshes, static and on a moving link
 
 def uv_sphere(rx, ry, rz, n_lat=10, n_lon=20):
-    th = np.pi * np.arange(1, n_lat) / n_lat
-    ph = 2 * np.pi * np.arange(n_lon) / n_lon
-    t, p = np.meshgrid(th, ph, indexing='ij')
-    ring = np.stack([rx * np.sin(t) * np.cos(p), ry * np.sin(t) * np.sin(p), rz * np.cos(t)],
-                    axis=-1).reshape(-1, 3)
-    verts = np.vstack([[0, 0, rz], ring, [0, 0, -rz]])
-    last = len(verts) - 1
-    faces = []
-    for j in range(n_lon):
-        j2 = (j + 1) % n_lon
-        faces.append((0, 1 + j, 1 + j2))
-        faces.append((1 + (n_lat - 2) * n_lon + j, last, 1 + (n_lat - 2) * n_lon + j2))
-    for i in range(n_lat - 2):
-        a, b = 1 + i * n_lon, 1 + (i + 1) * n_lon
-        for j in range(n_lon):
-            j2 = (j + 1) % n_lon
-            faces.append((a + j, b + j, b + j2))
-            faces.append((a + j, b + j2, a + j2))
-    return verts, np.array(faces)
+    part = meshgen.ellipsoid((rx, ry, rz), segments=n_lon, rings=n_lat)
+    return part.vertices, part.faces
 
 
 def box_mesh(size):

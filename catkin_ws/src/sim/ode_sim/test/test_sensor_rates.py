@@ -68,14 +68,20 @@ import rospy
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from sensor_msgs.msg import Imu, LaserScan
+from tf2_msgs.msg import TFMessage
 from gazebo_msgs.srv import GetWorldProperties
 rospy.init_node('rate_check', disable_signals=True)
 stamps = {'scan': [], 'imu': [], 'odom': []}
+tf = []
 def rec(k):
     return lambda m: stamps[k].append(m.header.stamp.to_nsec())
+def rec_tf(m):
+    tf.append([(t.header.stamp.to_nsec(), t.header.frame_id, t.child_frame_id)
+               for t in m.transforms])
 subs = [rospy.Subscriber('/scan', LaserScan, rec('scan'), queue_size=10000),
         rospy.Subscriber('/imu', Imu, rec('imu'), queue_size=10000),
-        rospy.Subscriber('/odom', Odometry, rec('odom'), queue_size=10000)]
+        rospy.Subscriber('/odom', Odometry, rec('odom'), queue_size=10000),
+        rospy.Subscriber('/tf', TFMessage, rec_tf, queue_size=10000)]
 pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
 t = Twist(); t.linear.x = 0.1; t.angular.z = 0.3; pub.publish(t)
 props = rospy.ServiceProxy('/gazebo/get_world_properties', GetWorldProperties)
@@ -89,7 +95,9 @@ while props().sim_time < start + float(sys.argv[1]) and time.monotonic() < deadl
 for s in subs:
     s.unregister()
 time.sleep(0.5)
-print(json.dumps({k: sorted(v) for k, v in stamps.items()}))
+out = {k: sorted(v) for k, v in stamps.items()}
+out['tf'] = tf
+print(json.dumps(out))
 """
 
 
@@ -123,3 +131,11 @@ def test_every_sensor_message_arrives_at_its_rate_in_simulated_time(roscore, tmp
         assert len(s) == expected, ('%s: %d of %d messages arrived between %.3f and %.3f s'
                                     % (key, len(s), expected, s[0], s[-1]))
         assert (len(s) - 1) / span == pytest.approx(hz, rel=0.01), key
+    # /tf as a listener sees it: one message per step group, the odom -> base_link transform
+    # with the odometry's own stamps and frames (as when each plugin call sent its own message)
+    tf = stamps['tf']
+    assert tf and all(len({t[0] for t in msg}) == 1 for msg in tf), tf[:5]
+    odom_tf = sorted(t[0] for msg in tf for t in msg if t[1:] == ['odom', 'base_link'])
+    assert odom_tf and {t[1:] == ['odom', 'base_link'] for msg in tf for t in msg} == {True}
+    lo, hi = max(odom_tf[0], stamps['odom'][0]), min(odom_tf[-1], stamps['odom'][-1])
+    assert [t for t in odom_tf if lo <= t <= hi] == [t for t in stamps['odom'] if lo <= t <= hi]

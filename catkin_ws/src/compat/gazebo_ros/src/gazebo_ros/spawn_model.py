@@ -74,62 +74,39 @@ def parse_args(argv, default_robot_namespace='/'):
 
 # ---------------------------------------------------------------------------------- model XML
 
-def model_search_path(env=None, ode_sim_models=None):
-    """Directories searched for model://NAME: GAZEBO_MODEL_PATH, ~/.gazebo/models, then ode_sim's
-    model library (found with rospkg unless given)."""
-    env = os.environ if env is None else env
-    paths = [p for p in env.get('GAZEBO_MODEL_PATH', '').split(':') if p]
-    home = env.get('HOME')
-    if home:
-        paths.append(os.path.join(home, '.gazebo', 'models'))
-    if ode_sim_models is None:
-        try:
-            import rospkg
-            ode_sim_models = os.path.join(rospkg.RosPack().get_path('ode_sim'), 'models')
-        except Exception:                       # rospkg missing or ode_sim not on the path
-            ode_sim_models = None
-    if ode_sim_models:
-        paths.append(ode_sim_models)
-    return paths
-
-
-def _version_key(text):
+def _resolve():
+    """ode_sim's model lookup (ode_sim.description.resolve): the one implementation of
+    model:// search order and model.config, shared with the simulator."""
     try:
-        return tuple(int(p) for p in (text or '0').split('.'))
-    except ValueError:
-        return (0,)
+        from ode_sim.description import resolve
+    except ImportError as e:
+        raise SpawnError('-database needs the ode_sim package (its model lookup): %s' % e)
+    return resolve
+
+
+def model_search_path(env=None, ode_sim_models=None):
+    """Directories searched for model://NAME, in the simulator's order: GAZEBO_MODEL_PATH,
+    ~/.gazebo/models, then ode_sim's model library (ode_sim's own unless given)."""
+    return _resolve().ModelPaths(env=env, library=ode_sim_models).roots
 
 
 def model_sdf_file(model_dir):
-    """The SDF file of a model directory: the newest <sdf version=...> of model.config, else
-    model.sdf. Raises SpawnError when model.config is broken or names a missing file."""
-    config = os.path.join(model_dir, 'model.config')
-    if os.path.isfile(config):
-        try:
-            root = ET.parse(config).getroot()
-        except ET.ParseError as e:
-            raise SpawnError('%s: invalid XML: %s' % (config, e))
-        sdfs = [s for s in root.findall('sdf') if (s.text or '').strip()]
-        if sdfs:
-            best = max(sdfs, key=lambda s: _version_key(s.get('version')))
-            path = os.path.join(model_dir, best.text.strip())
-            if not os.path.isfile(path):
-                raise SpawnError('%s: <sdf> names %s, which does not exist' % (config, path))
-            return path
-    path = os.path.join(model_dir, 'model.sdf')
-    if os.path.isfile(path):
-        return path
-    raise SpawnError('%s: no model.sdf and no <sdf> in model.config' % model_dir)
+    """The SDF file of a model directory (ode_sim's model.config rules). SpawnError when
+    model.config is broken or names a missing file."""
+    resolve = _resolve()
+    try:
+        return resolve.model_sdf_file(model_dir)
+    except resolve.ModelError as e:
+        raise SpawnError(str(e))
 
 
 def find_database_model(name, paths):
     """Path of the SDF file of model://name, searching `paths` in order."""
-    for base in paths:
-        model_dir = os.path.join(base, name)
-        if os.path.isdir(model_dir):
-            return model_sdf_file(model_dir)
-    raise SpawnError('-database %s: model://%s is in none of: %s'
-                     % (name, name, ':'.join(paths) or '(no model paths)'))
+    model_dir = _resolve().ModelPaths.only(paths).find_model_dir(name)
+    if model_dir is None:
+        raise SpawnError('-database %s: model://%s is in none of: %s'
+                         % (name, name, ':'.join(paths) or '(no model paths)'))
+    return model_sdf_file(model_dir)
 
 
 def read_file(path):

@@ -73,64 +73,56 @@ def _version_key(text):
 
 class ModelPaths:
     """model:// lookup, in gzserver's (and gazebo_ros spawn_model's) order: `extra` (list or
-    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/."""
+    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/.
+    The one model lookup: gazebo_ros's spawn_model -database uses it too. `env` (default
+    os.environ) and `library` (default this package's models/; '' for none) are injectable."""
 
-    def __init__(self, extra=None):
+    def __init__(self, extra=None, env=None, library=None):
+        env = os.environ if env is None else env
         if isinstance(extra, str):
             extra = _split_path(extra)
         self.extra = [os.path.abspath(os.path.expanduser(p)) for p in (extra or [])]
         self.env = [os.path.abspath(os.path.expanduser(p))
-                    for p in _split_path(os.environ.get('GAZEBO_MODEL_PATH', ''))]
-        home = os.environ.get('HOME')
+                    for p in _split_path(env.get('GAZEBO_MODEL_PATH', ''))]
+        home = env.get('HOME')
         if home:
             self.env.append(os.path.join(home, '.gazebo', 'models'))
-        self.library = os.path.join(package_dir(), 'models')
+        self.library = os.path.join(package_dir(), 'models') if library is None else library
+
+    @classmethod
+    def only(cls, roots):
+        """A lookup in exactly these directories, in this order."""
+        return cls(roots, env={}, library='')
 
     @property
     def roots(self):
         seen, out = set(), []
-        for p in self.extra + self.env + [self.library]:
+        for p in self.extra + self.env + ([self.library] if self.library else []):
             if p not in seen:
                 seen.add(p)
                 out.append(p)
         return out
 
-    def model_dir(self, name):
-        """Directory of model `name`, or ModelError naming the searched directories."""
+    def find_model_dir(self, name):
+        """Directory of model `name` in the first root that has it, else None."""
         name = name.strip('/')
         for root in self.roots:
             d = os.path.join(root, name)
             if os.path.isdir(d):
                 return d
-        raise ModelError('model://%s: model not found (searched: %s)'
-                         % (name, ', '.join(self.roots) or 'nothing'))
+        return None
+
+    def model_dir(self, name):
+        """Directory of model `name`, or ModelError naming the searched directories."""
+        d = self.find_model_dir(name)
+        if d is None:
+            raise ModelError('model://%s: model not found (searched: %s)'
+                             % (name.strip('/'), ', '.join(self.roots) or 'nothing'))
+        return d
 
     def model_sdf(self, name):
-        """The SDF file of model `name`: the <sdf> of model.config with the highest version,
-        else model.sdf."""
-        d = self.model_dir(name)
-        config = os.path.join(d, 'model.config')
-        chosen = None
-        if os.path.isfile(config):
-            try:
-                root = ET.parse(config).getroot()
-            except ET.ParseError as e:
-                raise ModelError('%s: malformed XML: %s' % (config, e))
-            best = None
-            for el in root.findall('sdf'):
-                fname = (el.text or '').strip()
-                if not fname:
-                    continue
-                key = _version_key(el.get('version'))
-                if best is None or key > best[0]:
-                    best = (key, fname)
-            if best is not None:
-                chosen = os.path.join(d, best[1])
-        if chosen is None:
-            chosen = os.path.join(d, 'model.sdf')
-        if not os.path.isfile(chosen):
-            raise ModelError('model://%s: %s does not exist' % (name, chosen))
-        return chosen
+        """The SDF file of model `name` (model_sdf_file of its directory)."""
+        return model_sdf_file(self.model_dir(name))
 
     def resolve_uri(self, uri, base_dir=None):
         """Absolute path of an existing file or directory named by `uri`: model://NAME/...,
@@ -184,6 +176,34 @@ class ModelPaths:
             if os.path.isfile(path):
                 return path
         raise ModelError('world %s: file not found (searched: %s)' % (name, ', '.join(searched)))
+
+
+def model_sdf_file(model_dir):
+    """The SDF file of a model directory: the <sdf> of model.config with the highest version,
+    else model.sdf. ModelError when model.config is broken or names a missing file."""
+    config = os.path.join(model_dir, 'model.config')
+    if os.path.isfile(config):
+        try:
+            root = ET.parse(config).getroot()
+        except ET.ParseError as e:
+            raise ModelError('%s: malformed XML: %s' % (config, e))
+        best = None
+        for el in root.findall('sdf'):
+            fname = (el.text or '').strip()
+            if not fname:
+                continue
+            key = _version_key(el.get('version'))
+            if best is None or key > best[0]:
+                best = (key, fname)
+        if best is not None:
+            path = os.path.join(model_dir, best[1])
+            if not os.path.isfile(path):
+                raise ModelError('%s: <sdf> names %s, which does not exist' % (config, path))
+            return path
+    path = os.path.join(model_dir, 'model.sdf')
+    if not os.path.isfile(path):
+        raise ModelError('%s: no model.sdf and no <sdf> in model.config' % model_dir)
+    return path
 
 
 def resolve_uri(uri, base_dir=None, paths=None):

@@ -9,7 +9,7 @@ import xml.etree.ElementTree as ET
 
 from ode_sim.description.model import Light, Model, ModelError, Scene, World
 from ode_sim.description.resolve import ModelPaths
-from ode_sim.description.sdf_elements import parse_joint, parse_link, parse_plugin
+from ode_sim.description.sdf_elements import parse_joint, parse_link, parse_plugin, read_nums
 from ode_sim.description.transforms import Pose
 from ode_sim.description.xmldoc import ParseContext, parse_xml, sdf_version, text_of
 
@@ -138,10 +138,8 @@ def parse_physics(ctx, el, physics):
     ptype = (el.get('type') or 'ode').strip()
     if ptype != 'ode':
         ctx.warn(el, '<physics type=%r>: ode_sim always simulates with ODE' % ptype)
-    physics.max_step_size = ctx.num(el, 'max_step_size', physics.max_step_size)
-    physics.real_time_update_rate = ctx.num(el, 'real_time_update_rate',
-                                            physics.real_time_update_rate)
-    physics.real_time_factor = ctx.num(el, 'real_time_factor', physics.real_time_factor)
+    read_nums(ctx, el, physics, [(n, n) for n in (
+        'max_step_size', 'real_time_update_rate', 'real_time_factor')])
     physics.max_contacts = ctx.integer(el, 'max_contacts', physics.max_contacts)
     if physics.max_step_size <= 0:
         raise ctx.err(el.find('max_step_size'), '<max_step_size> must be positive')
@@ -157,14 +155,8 @@ def parse_physics(ctx, el, physics):
                               % physics.solver_type)
             physics.iters = ctx.integer(solver, 'iters', physics.iters)
             physics.sor = ctx.num(solver, 'sor', physics.sor)
-        con = ode.find('constraints')
-        if con is not None:
-            physics.cfm = ctx.num(con, 'cfm', physics.cfm)
-            physics.erp = ctx.num(con, 'erp', physics.erp)
-            physics.contact_max_correcting_vel = ctx.num(con, 'contact_max_correcting_vel',
-                                                         physics.contact_max_correcting_vel)
-            physics.contact_surface_layer = ctx.num(con, 'contact_surface_layer',
-                                                    physics.contact_surface_layer)
+        read_nums(ctx, ode.find('constraints'), physics, [(n, n) for n in (
+            'cfm', 'erp', 'contact_max_correcting_vel', 'contact_surface_layer')])
     return physics
 
 

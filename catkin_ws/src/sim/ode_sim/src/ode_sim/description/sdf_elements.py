@@ -80,6 +80,15 @@ def load_mesh_geometry(ctx, elem, uri, scale, optional):
                     vertices=verts, faces=faces)
 
 
+def read_nums(ctx, el, obj, names):
+    """obj.ATTR = the number in <el><TAG> for each (TAG, ATTR) of `names` (a tag that is absent
+    keeps the value); nothing when `el` is None."""
+    if el is None:
+        return
+    for tag, attr in names:
+        setattr(obj, attr, ctx.num(el, tag, getattr(obj, attr)))
+
+
 def parse_surface(ctx, surf_el, surface=None):
     s = surface or Surface()
     if surf_el is None:
@@ -88,25 +97,17 @@ def parse_surface(ctx, surf_el, surface=None):
     if fr is not None:
         ode = fr.find('ode')
         if ode is not None:
-            s.mu1 = ctx.num(ode, 'mu', s.mu1)
-            s.mu2 = ctx.num(ode, 'mu2', s.mu2)
+            read_nums(ctx, ode, s, (('mu', 'mu1'), ('mu2', 'mu2')))
             if ode.find('fdir1') is not None:
                 f = ctx.floats(ode, 'fdir1', 3, (0.0, 0.0, 0.0))
                 s.fdir1 = None if not any(f) else f
-            s.slip1 = ctx.num(ode, 'slip1', s.slip1)
-            s.slip2 = ctx.num(ode, 'slip2', s.slip2)
+            read_nums(ctx, ode, s, (('slip1', 'slip1'), ('slip2', 'slip2')))
     ct = surf_el.find('contact')
     if ct is not None:
-        ode = ct.find('ode')
-        if ode is not None:
-            s.kp = ctx.num(ode, 'kp', s.kp)
-            s.kd = ctx.num(ode, 'kd', s.kd)
-            s.max_vel = ctx.num(ode, 'max_vel', s.max_vel)
-            s.min_depth = ctx.num(ode, 'min_depth', s.min_depth)
-    b = surf_el.find('bounce')
-    if b is not None:
-        s.bounce = ctx.num(b, 'restitution_coefficient', s.bounce)
-        s.bounce_threshold = ctx.num(b, 'threshold', s.bounce_threshold)
+        read_nums(ctx, ct.find('ode'), s, (('kp', 'kp'), ('kd', 'kd'), ('max_vel', 'max_vel'),
+                                           ('min_depth', 'min_depth')))
+    read_nums(ctx, surf_el.find('bounce'), s, (('restitution_coefficient', 'bounce'),
+                                               ('threshold', 'bounce_threshold')))
     return s
 
 

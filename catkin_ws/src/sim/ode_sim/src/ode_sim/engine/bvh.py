@@ -5,7 +5,7 @@ import math
 import numpy as np
 
 from ode_sim.description.model import ModelError
-from ode_sim.engine.rayprims import BRANCH, LEAF, TOL, expand, first_per_ray
+from ode_sim.engine.rayprims import BRANCH, LEAF, TOL, expand, record_hits
 
 class BVHForest:
     """Triangle sets, each with its own hierarchy (root), stored in shared flat arrays."""
@@ -169,18 +169,11 @@ class BVHForest:
             return best, who
         ln = np.concatenate(leaf_n)
         r, tri = expand(np.concatenate(leaf_r), self.first.take(ln), self.count.take(ln))
-        if tri_ok is not None:
-            keep = tri_ok.take(tri)
-            r, tri = r[keep], tri[keep]
+        r, tri = _allowed(r, tri, tri_ok)
         t, ok = self._triangles(ro[0].take(r), ro[1].take(r), ro[2].take(r),
                                 rd[0].take(r), rd[1].take(r), rd[2].take(r), tri)
         ok &= (t >= tmin) & (t <= limit.take(r))
-        r, t, tri = r[ok], t[ok], tri[ok]
-        if len(r):
-            r, t, tri = first_per_ray(r, t, tri)
-            best[r] = t
-            who[r] = self.owner.take(tri)
-        return best, who
+        return record_hits(best, who, r, t, tri, ok, self.owner)
 
     # -- rays from one origin: leaves culled by distance and azimuth ---------------------------
     def intersect_common(self, fan, tmin, limit, leaves, tri_ok=None):
@@ -196,19 +189,20 @@ class BVHForest:
         pl, pr = fan.candidates(lo, hi, tmin, limit)
         pl = leaves.take(pl)
         r, tri = expand(pr, self.first.take(pl), self.count.take(pl))
-        if tri_ok is not None:
-            keep = tri_ok.take(tri)
-            r, tri = r[keep], tri[keep]
+        r, tri = _allowed(r, tri, tri_ok)
         cx, cy, cz = fan.c
         dx, dy, dz = fan.d
         t, ok = self._triangles(cx, cy, cz, dx.take(r), dy.take(r), dz.take(r), tri)
         ok &= (t >= tmin) & (t <= limit.take(r))
-        r, t, tri = r[ok], t[ok], tri[ok]
-        if len(r):
-            r, t, tri = first_per_ray(r, t, tri)
-            best[r] = t
-            who[r] = self.owner.take(tri)
-        return best, who
+        return record_hits(best, who, r, t, tri, ok, self.owner)
+
+
+def _allowed(r, tri, tri_ok):
+    """Candidate (ray, triangle) pairs without the triangles tri_ok excludes (None: all)."""
+    if tri_ok is None:
+        return r, tri
+    keep = tri_ok.take(tri)
+    return r[keep], tri[keep]
 
 
 def mesh_triangles(shape):

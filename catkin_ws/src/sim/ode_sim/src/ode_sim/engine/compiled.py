@@ -57,6 +57,60 @@ def check_layout():
     check_layout()
 
 
+_MESHES = {}    # id(vertices) -> (vertices, faces, _core.TriMesh): one ODE copy per loaded mesh
+
+
+def trimesh_data(vertices, faces):
+    """The _core.TriMesh of a loaded mesh (description/mesh.py caches its arrays, so every
+    geom of one mesh file shares one ODE copy of the same triangles the ray caster uses)."""
+    key = (id(vertices), id(faces))
+    hit = _MESHES.get(key)
+    if hit is None or hit[0] is not vertices or hit[1] is not faces:
+        hit = (vertices, faces, _core.TriMesh(vertices, faces))
+        _MESHES[key] = hit
+    return hit[2]
+
+
+class TriMeshGeom:
+    """A libode trimesh geom made by the compiled core (Debian's PyODE has none), with the part
+    of PyODE's geom interface PhysicsWorld uses. Destroyed with remove() or when collected."""
+
+    def __init__(self, space, vertices, faces):
+        check_layout()
+        self.data = trimesh_data(vertices, faces)
+        self.id = _core.TriMesh.create(self.data, ptr(space))
+        self.space = space
+
+    def _id(self):
+        return self.id
+
+    def setBody(self, body):
+        _core.geom_set_body(self.id, ptr(body))
+
+    def setOffsetPose(self, p, q_wxyz):
+        _core.geom_set_offset(self.id, tuple(float(v) for v in p),
+                              tuple(float(v) for v in q_wxyz))
+
+    def setPose(self, p, q_wxyz):
+        _core.geom_set_pose(self.id, tuple(float(v) for v in p), tuple(float(v) for v in q_wxyz))
+
+    def getSpace(self):
+        return self.space if self.id else None
+
+    def getAABB(self):
+        return _core.geom_aabb(self.id)
+
+    def remove(self):
+        if self.id:
+            _core.geom_destroy(self.id)
+            self.id = 0
+            self.space = None
+
+    def __del__(self):
+        if _core is not None:
+            self.remove()
+
+
 class CompiledLoop:
     """PhysicsWorld's step loop in C++. PhysicsWorld tells it what changed (geoms, model
     spaces, joint commands, tracked links); step() runs n steps in one call, without the GIL."""

@@ -24,7 +24,7 @@ from ode_sim.description.model import Geometry, ModelError
 from ode_sim.description.transforms import Pose, quat_to_matrix
 from ode_sim.engine.bodies import (ENV, P_HI_STOP, P_LO_STOP, SimJoint, SimLink, SimModel,
                                    forward_kinematics, keep_alive, ode_q, welded_to_world)
-from ode_sim.engine.compiled import CompiledLoop
+from ode_sim.engine.compiled import CompiledLoop, TriMeshGeom
 from ode_sim.engine.pyloop import PythonLoop
 from ode_sim.engine.scene import ShapeInstance
 
@@ -77,8 +77,8 @@ class PhysicsWorld:
         self._tracked = []
         self._version = 0               # bumps when shapes change (ray caster / renderer refresh)
         self.use_step = physics.solver_type == 'world'
-        self._loop = CompiledLoop(self) if core == 'compiled' else PythonLoop(self)
         self.core = core
+        self._loop = CompiledLoop(self) if core == 'compiled' else PythonLoop(self)
 
     # ----------------------------------------------------------------- building
     def add_model(self, desc):
@@ -86,7 +86,8 @@ class PhysicsWorld:
             raise ModelError("a model named '%s' already exists" % desc.name)
         if not desc.links:
             raise ModelError("%s: model '%s' has no links" % (desc.source or 'model', desc.name))
-        _boxes_for_meshes(desc)
+        if self.core == 'python':
+            _boxes_for_meshes(desc)
         m = SimModel(self, desc)
         static = desc.static
         # bodies take the world's auto-disable flag when created (PyODE has no per-body setter)
@@ -163,19 +164,28 @@ class PhysicsWorld:
             elif k == 'cylinder':
                 geom = ode.GeomCylinder(space, float(g.radius), float(g.length))
             elif k == 'mesh':
-                raise AssertionError('mesh collisions are replaced by boxes in add_model')
+                if self.core != 'compiled':
+                    raise AssertionError('mesh collisions are replaced by boxes in add_model')
+                geom = TriMeshGeom(space, *_mesh_arrays(c, link))
             else:
                 raise ModelError("%s: collision '%s' of link '%s': unknown geometry '%s'"
                                  % (link.model.desc.source or 'model', c.name, link.name, k))
+            mesh = isinstance(geom, TriMeshGeom)
             if link.body is not None:
                 geom.setBody(link.body)
                 off = link.com.inverse() * c.pose
-                geom.setOffsetPosition(tuple(off.p))
-                geom.setOffsetQuaternion(ode_q(off.q))
+                if mesh:
+                    geom.setOffsetPose(off.p, ode_q(off.q))
+                else:
+                    geom.setOffsetPosition(tuple(off.p))
+                    geom.setOffsetQuaternion(ode_q(off.q))
             else:
                 pw = link_world * c.pose
-                geom.setPosition(tuple(pw.p))
-                geom.setQuaternion(ode_q(pw.q))
+                if mesh:
+                    geom.setPose(pw.p, ode_q(pw.q))
+                else:
+                    geom.setPosition(tuple(pw.p))
+                    geom.setQuaternion(ode_q(pw.q))
         s = c.surface
         fdir = tuple(s.fdir1) if s.fdir1 is not None and any(s.fdir1) else None
         self._surf[geom] = (s.mu1, s.mu2, s.kp, s.kd, fdir, s.bounce, s.bounce_threshold,
@@ -256,7 +266,9 @@ class PhysicsWorld:
             for g in link.geoms:
                 self._surf.pop(g, None)
                 self._loop.remove_geom(g)
-                if g.getSpace() is not None:
+                if isinstance(g, TriMeshGeom):
+                    g.remove()
+                elif g.getSpace() is not None:
                     g.getSpace().remove(g)
                 g.link = None
                 g.shape = None
@@ -405,19 +417,30 @@ class PhysicsWorld:
         return inst
 
 
+def _mesh_arrays(c, link):
+    """(vertices, faces) of a mesh collision as the description loaded them (already scaled):
+    the compiled core's trimesh and the ray caster's BVH are built from these same arrays."""
+    return _checked_mesh(c.geometry, c.name, link.name, link.model.desc.source or 'model')
+
+
+def _checked_mesh(g, collision, link, source):
+    if g.vertices is None or len(g.vertices) == 0 or g.faces is None or len(g.faces) == 0:
+        raise ModelError("%s: collision '%s' of link '%s': mesh '%s' has no triangles"
+                         % (source, collision, link, g.uri or g.filename))
+    return g.vertices, g.faces
+
+
 def _boxes_for_meshes(desc):
-    """Debian's PyODE is built without ODE's triangle-mesh collider (TriMeshData raises
-    NotImplementedError), so a mesh collision becomes the mesh's bounding box, with a warning.
-    The description itself is changed, so the ray caster sees exactly what the physics does."""
+    """core='python' only: Debian's PyODE is built without ODE's triangle-mesh collider
+    (TriMeshData raises NotImplementedError), so there a mesh collision becomes the mesh's
+    bounding box, with a warning. The description itself is changed, so the ray caster sees
+    exactly what the physics does. The compiled core collides the real triangles."""
     for link in desc.links:
         for c in link.collisions:
             g = c.geometry
             if g.kind != 'mesh':
                 continue
-            if g.vertices is None or len(g.vertices) == 0:
-                raise ModelError("%s: collision '%s' of link '%s': mesh '%s' has no triangles"
-                                 % (desc.source or 'model', c.name, link.name,
-                                    g.uri or g.filename))
+            _checked_mesh(g, c.name, link.name, desc.source or 'model')
             lo = g.vertices.min(axis=0)
             hi = g.vertices.max(axis=0)
             size = tuple(float(max(v, 1e-4)) for v in hi - lo)

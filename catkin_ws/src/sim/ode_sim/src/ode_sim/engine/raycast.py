@@ -50,8 +50,9 @@ import numpy as np
 
 from ode_sim.description.model import ModelError
 from ode_sim.engine.bvh import BVHForest, mesh_triangles
-from ode_sim.engine.rayprims import (Fan, Posing, as_rays, first_per_ray, k_box, k_cylinder,
-                                     k_sphere, plane_hits, pose_arrays, reduce_hits, to_local)
+from ode_sim.engine.rayprims import (Fan, Posing, as_rays, k_box, k_cylinder, k_sphere,
+                                     plane_hits, pose_arrays, record_hits, reduce_hits,
+                                     shape_params, static_first, to_local)
 
 KINDS = ('box', 'sphere', 'cylinder', 'plane', 'mesh')
 
@@ -120,18 +121,12 @@ class _Items:
     CODES = {'box': 0, 'sphere': 1, 'cylinder': 2}
 
     def __init__(self, items):
-        items = [it for it in items if it[1].static] + [it for it in items if not it[1].static]
+        items = static_first(items)
         self.index = np.array([i for i, _ in items], dtype=np.int64)
         self.code = np.array([self.CODES[s.geometry.kind] for _, s in items], dtype=np.int64)
         self.dynamic = [s for _, s in items if not s.static]
         self.nstatic = len(items) - len(self.dynamic)
-        p1 = np.zeros((len(items), 3))              # box: half extents; others: radius, half len
-        for j, (_, s) in enumerate(items):
-            g = s.geometry
-            if g.kind == 'box':
-                p1[j] = np.asarray(g.size, dtype=float) / 2.0
-            else:
-                p1[j, :2] = (float(g.radius), float(g.length) / 2.0)
+        p1 = shape_params(items)                    # box: half extents; others: radius, half len
         self.p1 = p1
         self.p1_soa = [np.ascontiguousarray(p1[:, i]) for i in range(3)]
         self._static = self._posed(*pose_arrays([s for _, s in items[:self.nstatic]]),
@@ -195,12 +190,7 @@ class _Items:
                 [a.take(sel) for a in p[:nparam]]
             t[sel], ok[sel] = kernel(*args, tmin)
         ok &= t <= limit.take(r)
-        r, t, k = r[ok], t[ok], k[ok]
-        if len(r):
-            r, t, k = first_per_ray(r, t, k)
-            best[r] = t
-            who[r] = self.index.take(k)
-        return best, who
+        return record_hits(best, who, r, t, k, ok, self.index)
 
 
 class RayCaster:

@@ -13,7 +13,7 @@ import numpy as np
 
 from ode_sim.description.model import ModelError
 from ode_sim.engine.bvh import BVHForest, mesh_triangles
-from ode_sim.engine.rayprims import Posing, pose_arrays
+from ode_sim.engine.rayprims import Posing, pose_arrays, shape_params, static_first
 
 try:
     from ode_sim.engine import _core
@@ -60,7 +60,7 @@ class CompiledRays:
         _require()
         self.scene = _core.RayScene(len(shapes))
         items = by_kind['box'] + by_kind['sphere'] + by_kind['cylinder']
-        items = [it for it in items if it[1].static] + [it for it in items if not it[1].static]
+        items = static_first(items)
         planes = by_kind['plane']
         meshes = by_kind['mesh']
         dynamic = [s for _, s in items + planes + meshes if not s.static]
@@ -69,13 +69,7 @@ class CompiledRays:
         self._none = (np.zeros((0, 4)), np.zeros((0, 3)))
 
         if items:
-            p = np.zeros((len(items), 3))
-            for j, (_, s) in enumerate(items):
-                g = s.geometry
-                if g.kind == 'box':
-                    p[j] = np.asarray(g.size, dtype=float) / 2.0
-                else:
-                    p[j, :2] = (float(g.radius), float(g.length) / 2.0)
+            p = shape_params(items)
             rot, pos, slot = _poses([s for _, s in items], slot_of)
             self.scene.set_items(np.array([_CODES[s.geometry.kind] for _, s in items],
                                           dtype=np.intc),

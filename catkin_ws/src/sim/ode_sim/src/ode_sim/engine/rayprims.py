@@ -336,3 +336,32 @@ def first_per_ray(r, t, tri):
     first = np.ones(len(r), dtype=bool)
     first[1:] = r[1:] != r[:-1]
     return r[first], t[first], tri[first]
+
+
+def record_hits(best, who, r, t, k, ok, owner):
+    """Keep the candidate hits `ok` (ray r, distance t, triangle or item k) and write the
+    nearest per ray into best (distance) and who (owner.take(k)); returns (best, who)."""
+    r, t, k = r[ok], t[ok], k[ok]
+    if len(r):
+        r, t, k = first_per_ray(r, t, k)
+        best[r] = t
+        who[r] = owner.take(k)
+    return best, who
+
+
+def shape_params(items):
+    """(K, 3) parameters of box / sphere / cylinder items [(index, shape)]: a box's half
+    extents, else (radius, half length, 0)."""
+    p = np.zeros((len(items), 3))
+    for j, (_, s) in enumerate(items):
+        g = s.geometry
+        if g.kind == 'box':
+            p[j] = np.asarray(g.size, dtype=float) / 2.0
+        else:
+            p[j, :2] = (float(g.radius), float(g.length) / 2.0)
+    return p
+
+
+def static_first(items):
+    """[(index, shape)] with the static shapes first, each group in its order."""
+    return [it for it in items if it[1].static] + [it for it in items if not it[1].static]

@@ -13,7 +13,7 @@ from ode_sim.ros import plugins as plugin_registry
 from ode_sim.description.model import ModelError
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import NO_WORK, PluginContext
-from ode_sim.ros.plugins.rosio import RosIO, WallClock
+from ode_sim.ros.plugins.rosio import RosIO, TfBatch, WallClock
 
 
 MAX_GROUP = 50      # steps per call at most when running as fast as possible (50 ms at 1 kHz)
@@ -88,13 +88,9 @@ class SimNode:
         self.plugins = {}           # model name -> [Plugin]
         self._pre = []              # plugins overriding before_step
         self._post = []
-        self.tf = None
-        try:
-            import tf2_ros
-            self.tf = tf2_ros.TransformBroadcaster()
-        except Exception:           # pragma: no cover - tf2_ros is a dependency
-            self.tf = None
-        self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf, io=RosIO(),
+        io = RosIO()
+        self.tf = TfBatch(io)       # one /tf message per step group (step_once)
+        self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf, io=io,
                                  wall=WallClock())
         self.spawner = Spawner(self)
         self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
@@ -221,6 +217,7 @@ class SimNode:
                 p.update()
             for hook in self.step_hooks:
                 hook()
+            self.tf.flush()
         self.publish_clock()
 
     def spin(self):

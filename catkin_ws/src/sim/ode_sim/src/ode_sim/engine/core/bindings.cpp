@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -15,12 +16,14 @@
 
 #include "raycast.h"
 #include "stepper.h"
+#include "trimesh.h"
 
 namespace py = pybind11;
 using ode_sim::ActiveJoint;
 using ode_sim::RayScene;
 using ode_sim::Stepper;
 using ode_sim::Surface;
+using ode_sim::TriMesh;
 
 namespace {
 
@@ -56,6 +59,22 @@ std::vector<T> flat(const CArray<T>& a, py::ssize_t n, const char* what) {
 using JointTuple = std::tuple<uintptr_t, bool, std::optional<double>, double, double,
                               std::optional<double>, double>;
 
+using Vec3 = std::tuple<double, double, double>;
+using Quat = std::tuple<double, double, double, double>;
+
+// a geom's pose: relative to its body (offset) or in the world
+void placeGeom(uintptr_t g, const Vec3& p, const Quat& q, bool offset) {
+  dGeomID id = as<dGeomID>(g);
+  dQuaternion qq = {std::get<0>(q), std::get<1>(q), std::get<2>(q), std::get<3>(q)};
+  if (offset) {
+    dGeomSetOffsetPosition(id, std::get<0>(p), std::get<1>(p), std::get<2>(p));
+    dGeomSetOffsetQuaternion(id, qq);
+  } else {
+    dGeomSetPosition(id, std::get<0>(p), std::get<1>(p), std::get<2>(p));
+    dGeomSetQuaternion(id, qq);
+  }
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -66,6 +85,55 @@ PYBIND11_MODULE(_core, m) {
   // ODE's quickStep reorders constraints with its one global random generator: two worlds
   // compared step by step must each start from the same seed
   m.def("set_random_seed", [](unsigned long seed) { dRandSetSeed(seed); });
+  // trimesh geoms (engine/compiled.py TriMeshGeom): PyODE 1.2 on Debian has no trimesh, so
+  // these geoms are made and placed here, by id
+  m.def("geom_set_body", [](uintptr_t g, uintptr_t b) { dGeomSetBody(as<dGeomID>(g), as<dBodyID>(b)); });
+  m.def("geom_set_offset", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, true); },
+        py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
+  m.def("geom_set_pose", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, false); },
+        py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
+  m.def("geom_pose", [](uintptr_t g) {
+    dGeomID id = as<dGeomID>(g);
+    const dReal* p = dGeomGetPosition(id);
+    dQuaternion q;
+    dGeomGetQuaternion(id, q);
+    return py::make_tuple(py::make_tuple(p[0], p[1], p[2]), py::make_tuple(q[0], q[1], q[2], q[3]));
+  });
+  m.def("geom_space", [](uintptr_t g) { return num(dGeomGetSpace(as<dGeomID>(g))); });
+  m.def("geom_aabb", [](uintptr_t g) {
+    dReal a[6];
+    dGeomGetAABB(as<dGeomID>(g), a);
+    return py::make_tuple(a[0], a[1], a[2], a[3], a[4], a[5]);
+  });
+  m.def("geom_destroy", [](uintptr_t g) { dGeomDestroy(as<dGeomID>(g)); });
+  m.def("is_trimesh", [](uintptr_t g) { return dGeomGetClass(as<dGeomID>(g)) == dTriMeshClass; });
+  // (a depth probe for tests: contacts of two geoms, as the near callback sees them)
+  m.def("collide", [](uintptr_t g1, uintptr_t g2, int max) {
+    std::vector<dContactGeom> buf(std::max(1, max));
+    ode_sim::ensureThreadData();
+    int n = dCollide(as<dGeomID>(g1), as<dGeomID>(g2), static_cast<int>(buf.size()), buf.data(),
+                     sizeof(dContactGeom));
+    py::list out;
+    for (int i = 0; i < n; ++i)
+      out.append(py::make_tuple(py::make_tuple(buf[i].pos[0], buf[i].pos[1], buf[i].pos[2]),
+                                py::make_tuple(buf[i].normal[0], buf[i].normal[1], buf[i].normal[2]),
+                                buf[i].depth));
+    return out;
+  });
+
+  py::class_<TriMesh>(m, "TriMesh", "a loaded mesh's triangles as ODE trimesh data")
+      .def(py::init([](const CArray<double>& v, const CArray<int64_t>& f) {
+             if (v.ndim() != 2 || v.shape(1) != 3)
+               throw std::invalid_argument("TriMesh: vertices must be (N, 3)");
+             if (f.ndim() != 2 || f.shape(1) != 3)
+               throw std::invalid_argument("TriMesh: faces must be (M, 3)");
+             return new TriMesh(std::vector<double>(v.data(), v.data() + v.size()),
+                                std::vector<int64_t>(f.data(), f.data() + f.size()));
+           }),
+           py::arg("vertices"), py::arg("faces"))
+      .def_property_readonly("triangles", &TriMesh::triangles)
+      .def("create", [](const TriMesh& t, uintptr_t space) { return num(t.create(as<dSpaceID>(space))); },
+           py::arg("space"));
   m.def("ode_config", []() { return std::string(dGetConfiguration()); });
 
   py::class_<Stepper>(m, "Stepper")

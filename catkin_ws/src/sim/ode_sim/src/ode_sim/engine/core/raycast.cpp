@@ -99,9 +99,18 @@ inline void rotT(const double* R, const double v[3], double out[3]) {
 }
 
 template <typename T>
-void need(const std::vector<T>& v, size_t n, const char* what) {
-  if (v.size() != n) throw std::invalid_argument(std::string("RayScene: ") + what +
-                                                 " has the wrong length");
+void need(const std::vector<T>& v, size_t n, const std::string& what) {
+  if (v.size() != n) throw std::invalid_argument("RayScene: " + what + " has the wrong length");
+}
+
+// the slots, rotations and positions of k posed shapes of one kind ("item", "plane")
+void needPosed(const std::vector<int>& slot, const std::vector<double>& rot,
+               const std::vector<double>& pos, size_t k, const std::string& kind) {
+  need(slot, k, kind + " slots");
+  need(rot, 9 * k, kind + " rotations");
+  need(pos, 3 * k, kind + " positions");
+  for (int s : slot)
+    if (s < -1) throw std::invalid_argument("RayScene: " + kind + " slot below -1");
 }
 
 }  // namespace
@@ -149,9 +158,7 @@ void RayScene::setItems(const std::vector<int>& code, const std::vector<int64_t>
   const size_t k = code.size();
   need(shape, k, "item shapes");
   need(p, 3 * k, "item parameters");
-  need(slot, k, "item slots");
-  need(rot, 9 * k, "item rotations");
-  need(pos, 3 * k, "item positions");
+  needPosed(slot, rot, pos, k, "item");
   items_.assign(k, Item{});
   for (size_t j = 0; j < k; ++j) {
     Item& it = items_[j];
@@ -159,7 +166,6 @@ void RayScene::setItems(const std::vector<int>& code, const std::vector<int64_t>
     checkShape(shape[j]);
     it.code = code[j];
     it.shape = shape[j];
-    if (slot[j] < -1) throw std::invalid_argument("RayScene: item slot below -1");
     it.slot = slot[j];
     std::copy(&p[3 * j], &p[3 * j] + 3, it.p);
     poseItem(it, &rot[9 * j], &pos[3 * j]);
@@ -178,15 +184,12 @@ void RayScene::setPlanes(const std::vector<int64_t>& shape,
                          const std::vector<double>& rot, const std::vector<double>& pos) {
   const size_t k = shape.size();
   need(local_normal, 3 * k, "plane normals");
-  need(slot, k, "plane slots");
-  need(rot, 9 * k, "plane rotations");
-  need(pos, 3 * k, "plane positions");
+  needPosed(slot, rot, pos, k, "plane");
   planes_.assign(k, Plane{});
   for (size_t j = 0; j < k; ++j) {
     Plane& pl = planes_[j];
     checkShape(shape[j]);
     pl.shape = shape[j];
-    if (slot[j] < -1) throw std::invalid_argument("RayScene: plane slot below -1");
     pl.slot = slot[j];
     std::copy(&local_normal[3 * j], &local_normal[3 * j] + 3, pl.local);
     posePlane(pl, &rot[9 * j], &pos[3 * j]);

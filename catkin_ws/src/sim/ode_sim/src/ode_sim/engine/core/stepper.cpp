@@ -1,5 +1,7 @@
 #include "stepper.h"
 
+#include "trimesh.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -175,6 +177,7 @@ void Stepper::sortSleepers() {
 }
 
 void Stepper::step(int n, int64_t steps) {
+  ensureThreadData();  // the trimesh collider's caches on the thread that steps
   for (int s = 0; s < n; ++s) {
     for (auto& j : active_) preStep(j);
     for (size_t i = 0; i < awake_.size(); ++i) {

@@ -34,7 +34,7 @@ class PluginContext:
     physics      ode_sim.engine.physics.PhysicsWorld
     world        ode_sim.description.model.World (lights, scene, physics settings)
     lockstep     bool: the ros_control bridge waits for each period's command
-    tf           tf2_ros.TransformBroadcaster (shared)
+    tf           rosio.TfBatch (shared; the node sends one /tf message per step group)
     io           where plugins get publishers / subscribers / services (rosio.RosIO in the
                  node; default rosio.MemoryIO: no master needed)
     wall         the wall clock of wall-time waits (rosio.WallClock; tests: rosio.FakeClock)

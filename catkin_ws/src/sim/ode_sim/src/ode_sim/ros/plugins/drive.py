@@ -27,7 +27,7 @@ import math
 import rospy
 
 from ode_sim.ros.plugins.base import Plugin
-from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close
+from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.ros.convert import fill_pose, transform_msg
 from ode_sim.description.transforms import Pose, quat_from_rpy
 
@@ -53,11 +53,15 @@ class _Drive(Plugin):
     def publish_odometry(self):
         """Odometry on the odometry topic, and odom -> base TF when the plugin's tag says so
         (publishOdomTF for the diff drive, broadcastTF for the skid steer)."""
+        want_msg = subscribed(self.odom_pub)
+        if not (want_msg or (self.odom_tf and self.ctx.tf is not None)):
+            return                      # nobody listens: no message built
         msg, pose = self.odometry()
         if self.odom_tf:
             self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
                                         msg.child_frame_id, pose)])
-        self.odom_pub.publish(msg)
+        if want_msg:
+            self.odom_pub.publish(msg)
 
     def _setup_base(self, base_frame, odom_frame):
         self.base_frame = base_frame
@@ -263,6 +267,8 @@ class DiffDrive(_Drive):
         self.send_tf(self.wheel_transforms())
 
     def publish_joint_state(self):
+        if not subscribed(self.joint_state_pub):
+            return
         from sensor_msgs.msg import JointState
         msg = JointState()
         msg.header.stamp = self.ctx.now()

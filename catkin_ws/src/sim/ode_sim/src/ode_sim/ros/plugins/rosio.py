@@ -95,6 +95,37 @@ class FakeClock:
         self.t += timeout
 
 
+class TfBatch:
+    """The plugins' shared TF broadcaster (ctx.tf): sendTransform() collects, flush() sends what
+    the plugins collected during one step group as one /tf message (tf2_ros's
+    TransformBroadcaster publishes one message per call), and nothing while /tf has no
+    subscriber. Every transform keeps the stamp its plugin gave it."""
+
+    def __init__(self, io):
+        from tf2_msgs.msg import TFMessage
+        self._msg = TFMessage
+        self.pub = io.publisher('/tf', TFMessage, queue_size=100)   # tf2_ros's queue
+        self.pending = []
+        self.messages = 0
+
+    def sendTransform(self, transforms):
+        if isinstance(transforms, (list, tuple)):
+            self.pending.extend(transforms)
+        else:
+            self.pending.append(transforms)
+
+    def flush(self):
+        if not self.pending:
+            return
+        out, self.pending = self.pending, []
+        if self.pub.get_num_connections() > 0:
+            self.pub.publish(self._msg(transforms=out))
+            self.messages += 1
+
+    def shutdown(self):
+        close(self.pub)
+
+
 def close(*handles):
     for h in handles:
         if h is None:

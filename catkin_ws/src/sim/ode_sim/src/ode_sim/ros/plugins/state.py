@@ -163,7 +163,7 @@ class JointStatePublisher(Plugin):
         return self._next_due()
 
     def update(self):
-        if self.due():
+        if self.due() and subscribed(self.pub):
             self.pub.publish(self.measure())
 
     def shutdown(self):
