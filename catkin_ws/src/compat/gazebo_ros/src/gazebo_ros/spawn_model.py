@@ -9,7 +9,9 @@ loading and checking the XML, the pose) need no ROS master and are unit-tested;
 import argparse
 import math
 import os
+import signal
 import sys
+import threading
 import xml.etree.ElementTree as ET
 from urllib.parse import urlsplit, urlunsplit
 
@@ -202,6 +204,8 @@ class SpawnModelNode:
     def __init__(self, args):
         self.args = args
         self._model_seen = False
+        self._delete_lock = threading.Lock()
+        self._deleted = False
 
     def _models_cb(self, msg):
         if self.args.wait in msg.name:
@@ -276,15 +280,31 @@ class SpawnModelNode:
                 return 1
 
         if args.bond:
+            # Ctrl-C / SIGTERM only set a flag: the model is deleted here, in the main thread. A
+            # signal handler that logs and calls a service can deadlock when the signal lands
+            # while the main thread itself is inside a log call (rospy's /rosout publisher lock).
+            # Shut down otherwise (rosnode kill), rospy's shutdown hook deletes it.
+            interrupted = threading.Event()
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                signal.signal(sig, lambda *_: interrupted.set())
             rospy.on_shutdown(self.delete_model)
             rospy.loginfo('Waiting for shutdown to delete model %s', args.model)
-            rospy.spin()
+            while not interrupted.wait(0.1) and not rospy.is_shutdown():
+                pass
+            if interrupted.is_set():
+                self.delete_model()
+                rospy.signal_shutdown('spawn_model -b interrupted')
         return 0
 
     def delete_model(self):
-        """Shutdown hook of -b: runs before rospy stops, so the service call still works."""
+        """Deletes the model of -b once: on an interrupt (main thread) or as rospy's shutdown
+        hook, which runs before rospy stops, so the service call still works."""
         import rospy
         from gazebo_msgs.srv import DeleteModel
+        with self._delete_lock:
+            if self._deleted:
+                return
+            self._deleted = True
         rospy.loginfo('Deleting model %s', self.args.model)
         try:
             rospy.ServiceProxy(self.args.gazebo_namespace + '/delete_model', DeleteModel)(
