@@ -399,7 +399,13 @@ class _Mesh:
     def vao(self, ctx, prog):
         vao = self.vaos.get(id(prog))
         if vao is None:
-            vao = ctx.vertex_array(prog, [(self.vbo, '3f 3f', 'in_pos', 'in_normal')], self.ibo)
+            # a program that does not use the normals (depth only, no lights) has no in_normal:
+            # skip those 12 bytes (moderngl >= 5.9, Debian 13, refuses an unknown attribute)
+            if prog.get('in_normal', None) is None:
+                content = [(self.vbo, '3f 12x', 'in_pos')]
+            else:
+                content = [(self.vbo, '3f 3f', 'in_pos', 'in_normal')]
+            vao = ctx.vertex_array(prog, content, self.ibo)
             self.vaos[id(prog)] = vao
         return vao
 
