@@ -3,10 +3,16 @@ statistics, weights / Neff / resampling, map integration, and a whole filter run
 room with drifting odometry."""
 import math
 
+import os
+import sys
+
 import numpy as np
 import pytest
 
 from gmapping import native
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import segment_lidar  # noqa: E402
 from gmapping.motion import absolute_difference, draw_from_motion
 from gmapping.params import ParamError, SlamParams, validate
 from gmapping.rbpf import GridSlam
@@ -23,18 +29,7 @@ ANGLES = np.linspace(-math.pi, math.pi, 360, endpoint=False)
 
 def raycast(pose, max_range=8.0):
     """Ranges of a 360-beam lidar at pose against SEGMENTS."""
-    a = pose[2] + ANGLES
-    dx, dy = np.cos(a)[:, None], np.sin(a)[:, None]
-    x0, y0, x1, y1 = (SEGMENTS[:, k][None, :] for k in range(4))
-    ex, ey = x1 - x0, y1 - y0
-    den = dx * ey - dy * ex
-    with np.errstate(divide='ignore', invalid='ignore'):
-        t = ((x0 - pose[0]) * ey - (y0 - pose[1]) * ex) / den
-        u = ((x0 - pose[0]) * dy - (y0 - pose[1]) * dx) / den
-    t[(den == 0) | (t <= 0) | (u < 0) | (u > 1)] = np.inf
-    r = t.min(axis=1)
-    r[r > max_range] = np.inf
-    return r
+    return segment_lidar.raycast(SEGMENTS, ANGLES, pose, max_range)
 
 
 def single_map(pose, delta=0.05):

@@ -5,10 +5,16 @@ bit on small synthetic cases, on the field's fast path (kernelSize 1), its gener
 (kernelSize 2) and its fallback at the grid's edge. Also resampling's sharing of grids."""
 import math
 
+import os
+import sys
+
 import numpy as np
 import pytest
 
 from gmapping import native
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import segment_lidar  # noqa: E402
 from gmapping.params import SlamParams
 
 # a 3 x 2.4 m room with a pillar, walls off the cell borders
@@ -21,18 +27,7 @@ ANGLES = np.linspace(-math.pi, math.pi, BEAMS, endpoint=False)
 
 
 def raycast(pose, max_range=8.0):
-    a = pose[2] + ANGLES
-    dx, dy = np.cos(a)[:, None], np.sin(a)[:, None]
-    x0, y0, x1, y1 = (SEGMENTS[:, k][None, :] for k in range(4))
-    ex, ey = x1 - x0, y1 - y0
-    den = dx * ey - dy * ex
-    with np.errstate(divide='ignore', invalid='ignore'):
-        t = ((x0 - pose[0]) * ey - (y0 - pose[1]) * ex) / den
-        u = ((x0 - pose[0]) * dy - (y0 - pose[1]) * dx) / den
-    t[(den == 0) | (t <= 0) | (u < 0) | (u > 1)] = np.inf
-    r = t.min(axis=1)
-    r[r > max_range] = np.inf
-    return r
+    return segment_lidar.raycast(SEGMENTS, ANGLES, pose, max_range)
 
 
 # --- the reference: the previous core, transcribed (doubles as in C, float32 for the means) ---
