@@ -27,6 +27,7 @@ TOL_XY, TOL_YAW = 0.10, 0.10      # converged: amcl's TF against the ground trut
 DRIVE_XY, DRIVE_YAW = 0.20, 0.20
 STATIC_XY, STATIC_YAW = 0.08, 0.08  # after stopping: an exact comparison
 NOMOTION_UPDATES = 15   # no-motion updates allowed to recover from a wrong initialpose
+RECOVER_XY, RECOVER_YAW = 0.25, 0.15  # at rest after them: most of the 0.5 m / 0.35 rad gone
 
 
 def load_map(yaml_path):
@@ -100,6 +101,32 @@ class AmclOfficeTest(unittest.TestCase):
         dyaw = abs((yaw_of(t.rotation) - yaw_of(truth.orientation) + math.pi) % (2 * math.pi) - math.pi)
         return dxy, dyaw
 
+    def drive(self, turn):
+        """Drives a slow arc for CONVERGE_S + 2 s of sim time, then stops: (the sim time at which
+        amcl came within TOL_XY / TOL_YAW of the truth and stayed there up to CONVERGE_S or
+        None, the errors after CONVERGE_S, the last error)."""
+        cmd = Twist()
+        cmd.linear.x, cmd.angular.z = 0.15, turn
+        t0 = rospy.Time.now().to_sec()
+        end = time.monotonic() + WALL_TIMEOUT
+        converged_at = None
+        errors = []
+        while rospy.Time.now().to_sec() < t0 + CONVERGE_S + 2.0:
+            self.assertLess(time.monotonic(), end, 'sim time stalled while driving')
+            self.cmd_pub.publish(cmd)
+            rospy.sleep(0.1)
+            dxy, dyaw = self.error()
+            now = rospy.Time.now().to_sec() - t0
+            if dxy < TOL_XY and dyaw < TOL_YAW:
+                if converged_at is None:
+                    converged_at = now
+            else:
+                converged_at = None if now < CONVERGE_S else converged_at
+            if now > CONVERGE_S:
+                errors.append((dxy, dyaw))
+        self.cmd_pub.publish(Twist())
+        return converged_at, errors, (dxy, dyaw)
+
     def test_converges_and_tracks(self):
         map_pub = rospy.Publisher('/map', OccupancyGrid, queue_size=1, latch=True)
         map_pub.publish(load_map(rospy.get_param('~map_file')))
@@ -112,28 +139,9 @@ class AmclOfficeTest(unittest.TestCase):
                   'the map -> odom -> base_footprint TF')
         dxy0, dyaw0 = self.error()
         rospy.loginfo('amcl error after its first update %.3f m %.3f rad', dxy0, dyaw0)
-        pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=1)
-        self.wait(lambda: pub.get_num_connections() > 0, 'a subscriber of /diffbot_controller/cmd_vel')
-        cmd = Twist()
-        cmd.linear.x, cmd.angular.z = 0.15, 0.2
-        t0 = rospy.Time.now().to_sec()
-        end = time.monotonic() + WALL_TIMEOUT
-        converged_at = None
-        errors = []
-        while rospy.Time.now().to_sec() < t0 + CONVERGE_S + 2.0:
-            self.assertLess(time.monotonic(), end, 'sim time stalled while driving')
-            pub.publish(cmd)
-            rospy.sleep(0.1)
-            dxy, dyaw = self.error()
-            now = rospy.Time.now().to_sec() - t0
-            if dxy < TOL_XY and dyaw < TOL_YAW:
-                if converged_at is None:
-                    converged_at = now
-            else:
-                converged_at = None if now < CONVERGE_S else converged_at
-            if now > CONVERGE_S:
-                errors.append((dxy, dyaw))
-        pub.publish(Twist())
+        self.cmd_pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=1)
+        self.wait(lambda: self.cmd_pub.get_num_connections() > 0, 'a subscriber of /diffbot_controller/cmd_vel')
+        converged_at, errors, (dxy, dyaw) = self.drive(0.2)
         t_stop = rospy.Time.now().to_sec()
         rospy.wait_for_service('/request_nomotion_update', WALL_TIMEOUT)
         nomotion = rospy.ServiceProxy('/request_nomotion_update', Empty)
@@ -179,8 +187,11 @@ class AmclOfficeTest(unittest.TestCase):
         # unlucky draw; the stamps tell that each update has been published. Without motion the
         # filter adds no noise, so once resampling has collapsed the cloud onto the best of the
         # particles drawn around the initial pose it cannot refine further (as the original):
-        # recovering from 0.5 m / 20 deg off is judged with the convergence tolerance, the
-        # tighter at-rest one needs the diffusion that driving brings (checked above).
+        # that best particle is typically within 0.05 m but, a draw in a few hundred, 0.08-0.11 m
+        # off (seen in CI). So at rest the test asks for what no-motion updates guarantee -
+        # most of the 0.5 m / 20 deg gone (within the original amcl tests' 0.25 m) - and then,
+        # as a user does after a 2D Pose Estimate, drives: the diffusion of motion brings the
+        # filter within the convergence tolerance, judged as at the start.
         for n in range(1, NOMOTION_UPDATES + 1):
             stamp = self.pose.header.stamp
             nomotion()
@@ -190,8 +201,13 @@ class AmclOfficeTest(unittest.TestCase):
                 break
         rospy.loginfo('amcl recovered from initialpose 0.5 m / 20 deg off after %d no-motion updates: '
                       'error %.3f m %.3f rad', n, dxy, dyaw)
-        self.assertLess(dxy, TOL_XY, 'position error after initialpose 0.5 m off + %d no-motion updates' % n)
-        self.assertLess(dyaw, TOL_YAW, 'yaw error after initialpose 20 deg off + %d no-motion updates' % n)
+        self.assertLess(dxy, RECOVER_XY, 'position error after initialpose 0.5 m off + %d no-motion updates' % n)
+        self.assertLess(dyaw, RECOVER_YAW, 'yaw error after initialpose 20 deg off + %d no-motion updates' % n)
+        converged_at, errors, (dxy, dyaw) = self.drive(-0.2)
+        rospy.loginfo('after the initialpose, driving: converged after %s s of sim time; max error %.3f m %.3f rad',
+                      converged_at, max(e[0] for e in errors), max(e[1] for e in errors))
+        self.assertIsNotNone(converged_at, 'amcl did not converge within %.0f s of sim time driving after '
+                             'initialpose: error %.3f m %.3f rad' % (CONVERGE_S, dxy, dyaw))
 
 if __name__ == '__main__':
     rospy.init_node('check_amcl_sim')

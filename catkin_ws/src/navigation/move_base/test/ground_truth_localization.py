@@ -1,7 +1,10 @@
 #!/usr/bin/python3
 """Test and bench stand-in for AMCL: publishes map -> odom so that map -> base_footprint is the
 simulator's ground truth (/gazebo/get_model_state of model `robot`, 20 Hz), future-dated by
-~transform_tolerance (0.1 s) as AMCL does. The space scanner is skid-steered: its wheel
+~transform_tolerance (0.1 s) as AMCL does. Stamped from the sim time at which it is sent (the
+ground truth is read then), not from the odometry's stamp it was computed with: a busy machine
+delaying this node must not make map -> odom look older than it is to the costmaps (whose
+pose lookups refuse a chain older than their transform_tolerance). The space scanner is skid-steered: its wheel
 odometry misjudges turns by a factor of about two, so identity map -> odom would not do."""
 import math
 import rospy
@@ -55,7 +58,7 @@ def main():
         tx = gt[0] - (c * ox - s * oy)
         ty = gt[1] - (s * ox + c * oy)
         out = TransformStamped()
-        out.header.stamp = t.header.stamp + tol
+        out.header.stamp = max(t.header.stamp, rospy.Time.now()) + tol
         if last_stamp is not None and out.header.stamp <= last_stamp:
             continue
         last_stamp = out.header.stamp
