@@ -232,6 +232,11 @@ def main():
         os.remove(old)
     env = dict(os.environ)
     env['ROS_LOG_DIR'] = os.path.join(RESULTS, 'ros_log')
+    # Python nodes print as on a terminal (line by line), whatever the caller's environment:
+    # tests read nodes' output from files, where Python would otherwise keep up to 8 KiB
+    # (a talker's first minute) in its buffer - a fresh Debian 13 container has no
+    # PYTHONUNBUFFERED in its environment and 4 tests waited for output that never came
+    env['PYTHONUNBUFFERED'] = '1'
     env['COURSE_TEST_FULL'] = '1' if args.full else ''
     runner = Runner()
     t0 = time.monotonic()

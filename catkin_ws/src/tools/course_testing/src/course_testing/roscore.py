@@ -6,13 +6,16 @@ from course_testing.proc import Proc, free_port, wait_for
 
 
 class RosCore:
-    """Start `roscore -p PORT`; `env` is os.environ pointed at it (ROS_MASTER_URI, logs)."""
+    """Start `roscore -p PORT`; `env` is os.environ pointed at it (ROS_MASTER_URI, logs,
+    unbuffered Python output)."""
 
     def __init__(self, port=None, log_dir=None):
         self.log_dir = log_dir or tempfile.mkdtemp(prefix='roscore-')
         os.makedirs(self.log_dir, exist_ok=True)
         self.env = dict(os.environ)
-        self.env.update(ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir)
+        # nodes started with this env print line by line into their log files, as on a
+        # terminal (Python buffers 8 KiB when its output is a file)
+        self.env.update(ROS_IP='127.0.0.1', ROS_LOG_DIR=self.log_dir, PYTHONUNBUFFERED='1')
         self.env.pop('ROS_HOSTNAME', None)
         self._use_port(port or free_port())
         self.proc = None
