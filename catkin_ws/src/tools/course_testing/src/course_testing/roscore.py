@@ -20,9 +20,11 @@ class RosCore:
         self._use_port(port or free_port())
         self.proc = None
 
-    def start(self, timeout=30.0, attempts=3):
+    def start(self, timeout=120.0, attempts=3):
         """Start and wait until the master and /rosout answer. A port taken by another process
-        between choosing and binding it (tests run concurrently) is retried on a new port."""
+        between choosing and binding it (tests run concurrently) is retried on a new port.
+        roscore is three Python processes (roslaunch, rosmaster, rosout) that need ~1.5 s of
+        CPU: on 2 cores at load 24 that took more than 30 s once, hence the generous wait."""
         for attempt in range(attempts):
             self.proc = Proc(['roscore', '-p', str(self.port)], env=self.env,
                              log=os.path.join(self.log_dir, 'roscore.out'))
