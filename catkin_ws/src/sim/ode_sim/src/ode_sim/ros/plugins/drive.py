@@ -28,8 +28,8 @@ import rospy
 
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
-from ode_sim.ros.convert import fill_pose, transform_msg
-from ode_sim.description.transforms import Pose, quat_from_rpy
+from ode_sim.ros.convert import fill_pose, fill_pose_tuples, transform_msg
+from ode_sim.description.transforms import Pose, quat_from_rpy, yaw_of
 
 LEFT, RIGHT = 0, 1
 ODOM_POSE_COVARIANCE = {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}
@@ -95,10 +95,21 @@ class _Drive(Plugin):
         lin, ang = self.base_link.velocity(pose.p)
         return pose, lin, ang
 
+    def base_tuples(self):
+        """base_state() as float tuples: (p, q, linear velocity, angular velocity)."""
+        if self.base_link is None:
+            pose, lin, ang = self.base_state()
+            p, q = pose.tuples()
+            return p, q, tuple(float(v) for v in lin), tuple(float(v) for v in ang)
+        p, q = self.base_link.frame_tuples(self.base_frame)
+        lin, ang = self.base_link.point_velocity(p)
+        return p, q, lin, ang
+
     def ground_truth_odometry(self, msg):
-        pose, lin, ang = self.base_state()
-        fill_pose(msg.pose.pose, pose)
-        yaw = pose.rpy()[2]
+        p, q, lin, ang = self.base_tuples()
+        pose = Pose.unit(p, q)
+        fill_pose_tuples(msg.pose.pose, p, q)
+        yaw = yaw_of(q)
         c, s = math.cos(yaw), math.sin(yaw)
         msg.twist.twist.linear.x = c * lin[0] + s * lin[1]
         msg.twist.twist.linear.y = c * lin[1] - s * lin[0]
