@@ -206,3 +206,20 @@ def test_no_yield_write_keeps_rospys_queue_rules():
     finally:
         tp.time.sleep = orig
     assert not _queued(object())
+
+
+def test_no_transform_is_built_while_tf_has_no_subscriber():
+    pw, m, ctx, sk = skid_world()
+    ctx.tf = TfBatch(MemoryIO())
+    built = []
+    ctx.tf.sendTransform = built.append
+    ctx.tf.pub.connections = 0
+    for _ in range(100):
+        pw.step(1)
+        sk.update()
+    assert built == [] and len(sk.odom_pub.sent) == 6     # odometry still goes out (t = 0.001 ..)
+    ctx.tf.pub.connections = 1
+    for _ in range(100):
+        pw.step(1)
+        sk.update()
+    assert len(built) == 5 and built[0][0].child_frame_id == 'base_footprint'

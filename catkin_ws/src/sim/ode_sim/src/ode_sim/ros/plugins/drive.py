@@ -54,10 +54,11 @@ class _Drive(Plugin):
         """Odometry on the odometry topic, and odom -> base TF when the plugin's tag says so
         (publishOdomTF for the diff drive, broadcastTF for the skid steer)."""
         want_msg = subscribed(self.odom_pub)
-        if not (want_msg or (self.odom_tf and self.ctx.tf is not None)):
+        want_tf = self.odom_tf and self.tf_wanted()
+        if not (want_msg or want_tf):
             return                      # nobody listens: no message built
         msg, pose = self.odometry()
-        if self.odom_tf:
+        if want_tf:
             self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
                                         msg.child_frame_id, pose)])
         if want_msg:
@@ -115,6 +116,14 @@ class _Drive(Plugin):
         msg.twist.twist.linear.y = c * lin[1] - s * lin[0]
         msg.twist.twist.angular.z = float(ang[2])
         return pose
+
+    def tf_wanted(self):
+        """Whether transforms sent now reach anyone (TfBatch.wanted: /tf subscribed)."""
+        tf = self.ctx.tf
+        if tf is None:
+            return False
+        wanted = getattr(tf, 'wanted', None)
+        return wanted() if wanted is not None else True
 
     def send_tf(self, transforms):
         if self.ctx.tf is not None and transforms:
@@ -275,7 +284,8 @@ class DiffDrive(_Drive):
         return out
 
     def publish_wheel_transforms(self):
-        self.send_tf(self.wheel_transforms())
+        if self.tf_wanted():
+            self.send_tf(self.wheel_transforms())
 
     def publish_joint_state(self):
         if not subscribed(self.joint_state_pub):

@@ -154,6 +154,10 @@ class TfBatch:
         self.pending = []
         self.messages = 0
 
+    def wanted(self):
+        """Whether /tf has a subscriber (else plugins need not build their transforms)."""
+        return self.pub.get_num_connections() > 0
+
     def sendTransform(self, transforms):
         if isinstance(transforms, (list, tuple)):
             self.pending.extend(transforms)
