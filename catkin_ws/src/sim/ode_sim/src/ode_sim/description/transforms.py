@@ -78,6 +78,48 @@ def quat_from_axis_angle(axis, angle):
     return np.array([axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2)])
 
 
+# -- the same rotations on plain float tuples: per-step sensor maths (IMU, odometry, link
+#    poses) without numpy's per-call overhead on 3- and 4-vectors --------------------------
+def qmul(a, b):
+    """quat_multiply on tuples: a * b -> (x, y, z, w)."""
+    ax, ay, az, aw = a
+    bx, by, bz, bw = b
+    return (aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz)
+
+
+def qnormalize(q):
+    x, y, z, w = q
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    return (x / n, y / n, z / n, w / n) if n > 0 else (0.0, 0.0, 0.0, 1.0)
+
+
+def qrotate(q, v):
+    """quat_to_matrix(q) @ v on tuples."""
+    x, y, z, w = q
+    vx, vy, vz = v
+    return ((1 - 2 * (y * y + z * z)) * vx + 2 * (x * y - z * w) * vy + 2 * (x * z + y * w) * vz,
+            2 * (x * y + z * w) * vx + (1 - 2 * (x * x + z * z)) * vy + 2 * (y * z - x * w) * vz,
+            2 * (x * z - y * w) * vx + 2 * (y * z + x * w) * vy + (1 - 2 * (x * x + y * y)) * vz)
+
+
+def qrotate_inv(q, v):
+    """quat_to_matrix(q).T @ v on tuples (a world vector in the frame q)."""
+    x, y, z, w = q
+    vx, vy, vz = v
+    return ((1 - 2 * (y * y + z * z)) * vx + 2 * (x * y + z * w) * vy + 2 * (x * z - y * w) * vz,
+            2 * (x * y - z * w) * vx + (1 - 2 * (x * x + z * z)) * vy + 2 * (y * z + x * w) * vz,
+            2 * (x * z + y * w) * vx + 2 * (y * z - x * w) * vy + (1 - 2 * (x * x + y * y)) * vz)
+
+
+def yaw_of(q):
+    """rpy_from_quat(q)[2]."""
+    x, y, z, w = q
+    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+
+
 class Pose:
     __slots__ = ('p', 'q')
 
@@ -86,6 +128,20 @@ class Pose:
         q = np.array(q, dtype=float)
         n = np.linalg.norm(q)
         self.q = q / n if n > 0 else np.array([0.0, 0.0, 0.0, 1.0])
+
+    @classmethod
+    def unit(cls, p, q):
+        """A Pose of a position and an already unit quaternion (no normalisation)."""
+        pose = cls.__new__(cls)
+        pose.p = np.array(p, dtype=float)
+        pose.q = np.array(q, dtype=float)
+        return pose
+
+    def tuples(self):
+        """(p, q) as float tuples, for the tuple functions above."""
+        p, q = self.p, self.q
+        return ((float(p[0]), float(p[1]), float(p[2])),
+                (float(q[0]), float(q[1]), float(q[2]), float(q[3])))
 
     @classmethod
     def from_xyz_rpy(cls, xyz=(0, 0, 0), rpy=(0, 0, 0)):

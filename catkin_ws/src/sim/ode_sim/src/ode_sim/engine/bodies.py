@@ -6,7 +6,8 @@ import numpy as np
 import ode
 
 from ode_sim.description.model import ModelError
-from ode_sim.description.transforms import Pose, quat_from_axis_angle
+from ode_sim.description.transforms import (Pose, qmul, qnormalize, qrotate,
+                                            quat_from_axis_angle)
 
 ENV = ode.environment
 
@@ -45,6 +46,7 @@ class SimLink:
         self.body = body
         self.com = com                  # Pose of the COM (body) frame in the link frame
         self._com_inv = com.inverse()
+        self._ci_p, self._ci_q = self._com_inv.tuples()
         self._static_pose = static_pose
         self.geoms = []
         self.prev_vel = None            # for acceleration tracking
@@ -54,8 +56,30 @@ class SimLink:
         """The link frame in the world."""
         if self.body is None:
             return self._static_pose
+        p, q = self.pose_tuples()
+        return Pose.unit(p, q)
+
+    def pose_tuples(self, local_q=None):
+        """pose() as float tuples (p, q), computed without numpy; with local_q, q is the
+        orientation of the frame rotated by local_q in the link frame (pose().q * local_q)."""
+        if self.body is None:
+            p, q = self._static_pose.tuples()
+            return p, (q if local_q is None else qnormalize(qmul(q, local_q)))
         b = self.body
-        return Pose(b.getPosition(), ros_q(b.getQuaternion())) * self._com_inv
+        w, x, y, z = b.getQuaternion()
+        bq = qnormalize((x, y, z, w))
+        bx, by, bz = b.getPosition()
+        ox, oy, oz = qrotate(bq, self._ci_p)
+        q = qmul(bq, self._ci_q)
+        if local_q is not None:
+            q = qmul(q, local_q)
+        return (bx + ox, by + oy, bz + oz), qnormalize(q)
+
+    def angular_velocity(self):
+        """The world angular velocity as a float tuple (zero for a static link)."""
+        if self.body is None:
+            return (0.0, 0.0, 0.0)
+        return tuple(self.body.getAngularVel())
 
     def body_frame(self):
         """(ODE body, the link frame in the body's frame) for batched pose reads: pose() is
@@ -66,7 +90,22 @@ class SimLink:
         """A frame lumped into this link (URDF fixed joint) or the link itself, in the world."""
         if name == self.name or name not in self.desc.lumped:
             return self.pose()
-        return self.pose() * self.desc.lumped[name]
+        return Pose.unit(*self.frame_tuples(name))
+
+    def frame_tuples(self, name):
+        """frame_pose(name) as float tuples (p, q)."""
+        p, q = self.pose_tuples()
+        if name == self.name or name not in self.desc.lumped:
+            return p, q
+        lp, lq = self.desc.lumped[name].tuples()
+        ox, oy, oz = qrotate(q, lp)
+        return (p[0] + ox, p[1] + oy, p[2] + oz), qnormalize(qmul(q, lq))
+
+    def point_velocity(self, point):
+        """velocity(point) as float tuples (linear, angular)."""
+        if self.body is None:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        return tuple(self.body.getPointVel(tuple(point))), tuple(self.body.getAngularVel())
 
     def velocity(self, point=None):
         """(linear velocity of `point` (world; default the link origin), angular velocity),
@@ -181,8 +220,10 @@ class SimJoint:
             self.joint.setParam(P_FMAX, 0.0)
 
     def _update_active(self):
+        was = self.active
         self.active = bool(self.pos_cmd is not None or self.effort_cmd or self.desc.damping)
-        self.world_ref._refresh_active()
+        if was or self.active:          # the compiled loop's joint rows change
+            self.world_ref._refresh_active()
 
     def set_effort(self, effort):
         """Apply this effort every step until changed (clamped to the URDF effort limit)."""
@@ -200,9 +241,16 @@ class SimJoint:
         a large force), as Gazebo's SetParam("vel") / SetParam("fmax")."""
         if fmax is None:
             fmax = self.limit_effort if self.limit_effort is not None else 1e6
+        cmd = (float(velocity), float(fmax))
+        if cmd == self.vel_cmd and self.pos_cmd is None and not self.effort_cmd:
+            # the motor already drives at this target (a drive plugin repeating its command
+            # at its update rate): only the wake-up is left to do
+            if self.hinge or self.slider:
+                self.child.wake()
+            return
         self.pos_cmd = None
         self.effort_cmd = 0.0
-        self.vel_cmd = (float(velocity), float(fmax))
+        self.vel_cmd = cmd
         if self.hinge or self.slider:
             self._motor(self.vel_cmd[0], self.vel_cmd[1])
             self.child.wake()

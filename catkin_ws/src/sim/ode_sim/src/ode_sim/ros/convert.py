@@ -23,6 +23,14 @@ def fill_pose(msg_pose, pose):
     q.x, q.y, q.z, q.w = (float(v) for v in pose.q)
 
 
+def fill_pose_tuples(msg_pose, p, q):
+    """fill_pose from float tuples p (x, y, z) and q (x, y, z, w)."""
+    pos = msg_pose.position
+    pos.x, pos.y, pos.z = p
+    o = msg_pose.orientation
+    o.x, o.y, o.z, o.w = q
+
+
 def fill_vector(msg_vec, v):
     msg_vec.x, msg_vec.y, msg_vec.z = (float(x) for x in v)
 

@@ -12,11 +12,9 @@ from rosgraph_msgs.msg import Clock
 from ode_sim.ros import plugins as plugin_registry
 from ode_sim.description.model import ModelError
 from ode_sim.engine.physics import PhysicsWorld
-from ode_sim.ros.plugins.base import NO_WORK, PluginContext
+from ode_sim.ros.plugins.base import PluginContext
 from ode_sim.ros.plugins.rosio import RosIO, TfBatch, WallClock
-
-
-MAX_GROUP = 50      # steps per call at most when running as fast as possible (50 ms at 1 kHz)
+from ode_sim.ros.stepping import MAX_GROUP, StepLoop  # noqa: F401 (MAX_GROUP: tests)
 
 
 class Spawner:
@@ -77,30 +75,26 @@ class Pacer:
         return True
 
 
-class SimNode:
+class SimNode(StepLoop):
+    """The stepping policy of StepLoop (group_size, step_once) with models, pacing and /clock."""
+
     def __init__(self, world, paused=False, lockstep=False, verbose=False):
+        io = RosIO()
+        # one /tf message per step group (step_once)
+        super().__init__(PhysicsWorld(world.physics, world.gravity), TfBatch(io))
         self.world = world
-        self.physics = PhysicsWorld(world.physics, world.gravity)
-        self.lock = threading.RLock()
         self.paused = paused
         self.verbose = verbose
         self.rate = world.physics.real_time_update_rate
         self.plugins = {}           # model name -> [Plugin]
-        self._pre = []              # plugins overriding before_step
-        self._post = []
-        io = RosIO()
-        self.tf = TfBatch(io)       # one /tf message per step group (step_once)
         self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf, io=io,
                                  wall=WallClock())
         self.spawner = Spawner(self)
-        self.clock_pub = rospy.Publisher('/clock', Clock, queue_size=10)
+        self.clock_pub = io.publisher('/clock', Clock, queue_size=10)
         freq = float(rospy.get_param('gazebo/pub_clock_frequency', 0) or 0)
         self.clock_period = 1.0 / freq if freq > 0 else 0.0
         self._last_clock = -1.0
         self._last_clock_wall = 0.0
-        self.step_hooks = []        # callables run after each step (model_states publisher ...)
-        self.group_limits = []      # callables: when a hook next has work (see group_size)
-        self._limits = []
         self._stop = threading.Event()
         self._resync = True
         for m in world.models:
@@ -139,11 +133,7 @@ class SimNode:
             return self.physics.remove_model(name)
 
     def _rebuild_hooks(self):
-        from ode_sim.ros.plugins.base import Plugin
-        allp = [p for ps in self.plugins.values() for p in ps]
-        self._pre = [p for p in allp if type(p).before_step is not Plugin.before_step]
-        self._post = [p for p in allp if type(p).update is not Plugin.update]
-        self._limits = [p.next_update for p in self._pre + self._post]
+        self.set_plugins([p for ps in self.plugins.values() for p in ps])
 
     # ----------------------------------------------------------------- control
     def pause(self):
@@ -182,43 +172,6 @@ class SimNode:
                 self._last_clock_wall = now
         self._last_clock = t
         self.clock_pub.publish(Clock(clock=rospy.Time.from_sec(t)))
-
-    def group_size(self):
-        """How many steps the node may take in one call when running as fast as possible: up
-        to the first time a plugin or hook has work (next_update()), at most MAX_GROUP; 1
-        when one of them must run after every step. Plugins then run at the very steps they
-        would run at one step at a time, so stamps and rates do not change."""
-        n = MAX_GROUP
-        pw = self.physics
-        t = pw.time
-        for f in self._limits + self.group_limits:
-            nu = f()
-            if nu is None:
-                return 1
-            if nu == NO_WORK:
-                continue
-            if t + 1e-9 >= nu:
-                return 1
-            # the first k with time_after(k) + 1e-9 >= nu, as Plugin.due() decides
-            k = max(1, min(n, int((nu - t) / pw.dt) - 1))
-            while k < n and pw.time_after(k) + 1e-9 < nu:
-                k += 1
-            n = k
-            if n == 1:
-                return 1
-        return n
-
-    def step_once(self, n=1):
-        for p in self._pre:
-            p.before_step()
-        with self.lock:
-            self.physics.step(n)
-            for p in self._post:
-                p.update()
-            for hook in self.step_hooks:
-                hook()
-            self.tf.flush()
-        self.publish_clock()
 
     def spin(self):
         """Run until rospy shuts down: step, pace, publish."""

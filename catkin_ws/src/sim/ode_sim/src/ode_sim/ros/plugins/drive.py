@@ -28,8 +28,8 @@ import rospy
 
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
-from ode_sim.ros.convert import fill_pose, transform_msg
-from ode_sim.description.transforms import Pose, quat_from_rpy
+from ode_sim.ros.convert import fill_pose, fill_pose_tuples, transform_msg
+from ode_sim.description.transforms import Pose, quat_from_rpy, yaw_of
 
 LEFT, RIGHT = 0, 1
 ODOM_POSE_COVARIANCE = {0: 1e-5, 7: 1e-5, 14: 1e12, 21: 1e12, 28: 1e12, 35: 1e-3}
@@ -54,10 +54,11 @@ class _Drive(Plugin):
         """Odometry on the odometry topic, and odom -> base TF when the plugin's tag says so
         (publishOdomTF for the diff drive, broadcastTF for the skid steer)."""
         want_msg = subscribed(self.odom_pub)
-        if not (want_msg or (self.odom_tf and self.ctx.tf is not None)):
+        want_tf = self.odom_tf and self.tf_wanted()
+        if not (want_msg or want_tf):
             return                      # nobody listens: no message built
         msg, pose = self.odometry()
-        if self.odom_tf:
+        if want_tf:
             self.send_tf([transform_msg(msg.header.stamp, msg.header.frame_id,
                                         msg.child_frame_id, pose)])
         if want_msg:
@@ -95,15 +96,34 @@ class _Drive(Plugin):
         lin, ang = self.base_link.velocity(pose.p)
         return pose, lin, ang
 
+    def base_tuples(self):
+        """base_state() as float tuples: (p, q, linear velocity, angular velocity)."""
+        if self.base_link is None:
+            pose, lin, ang = self.base_state()
+            p, q = pose.tuples()
+            return p, q, tuple(float(v) for v in lin), tuple(float(v) for v in ang)
+        p, q = self.base_link.frame_tuples(self.base_frame)
+        lin, ang = self.base_link.point_velocity(p)
+        return p, q, lin, ang
+
     def ground_truth_odometry(self, msg):
-        pose, lin, ang = self.base_state()
-        fill_pose(msg.pose.pose, pose)
-        yaw = pose.rpy()[2]
+        p, q, lin, ang = self.base_tuples()
+        pose = Pose.unit(p, q)
+        fill_pose_tuples(msg.pose.pose, p, q)
+        yaw = yaw_of(q)
         c, s = math.cos(yaw), math.sin(yaw)
         msg.twist.twist.linear.x = c * lin[0] + s * lin[1]
         msg.twist.twist.linear.y = c * lin[1] - s * lin[0]
         msg.twist.twist.angular.z = float(ang[2])
         return pose
+
+    def tf_wanted(self):
+        """Whether transforms sent now reach anyone (TfBatch.wanted: /tf subscribed)."""
+        tf = self.ctx.tf
+        if tf is None:
+            return False
+        wanted = getattr(tf, 'wanted', None)
+        return wanted() if wanted is not None else True
 
     def send_tf(self, transforms):
         if self.ctx.tf is not None and transforms:
@@ -264,7 +284,8 @@ class DiffDrive(_Drive):
         return out
 
     def publish_wheel_transforms(self):
-        self.send_tf(self.wheel_transforms())
+        if self.tf_wanted():
+            self.send_tf(self.wheel_transforms())
 
     def publish_joint_state(self):
         if not subscribed(self.joint_state_pub):

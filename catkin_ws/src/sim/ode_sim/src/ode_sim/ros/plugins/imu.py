@@ -29,8 +29,8 @@ from ode_sim.ros.plugins.base import NO_WORK, Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 from ode_sim.ros.convert import fill_vector
 from ode_sim.ros.plugins.state import gaussian, parse_vector
-from ode_sim.description.transforms import (Pose, quat_conjugate, quat_from_rpy, quat_multiply,
-                                            quat_to_matrix)
+from ode_sim.description.transforms import (Pose, qmul, qnormalize, qrotate_inv, quat_conjugate,
+                                            quat_from_rpy)
 
 
 def _fill_cov(msg, gn2):
@@ -45,6 +45,7 @@ class _Imu(Plugin):
         """link: SimLink measured; local: Pose of the IMU frame in the link frame."""
         self.imu_link = link
         self.local = local
+        self._local_q = local.tuples()[1]
         self.rng = random.Random(0)
         self.ctx.physics.track_acceleration(link)
         self.pub = None
@@ -54,13 +55,14 @@ class _Imu(Plugin):
 
     def frame_state(self):
         """(world rotation quaternion of the IMU frame, angular velocity in that frame,
-        proper linear acceleration in that frame)."""
+        proper linear acceleration in that frame), as float tuples."""
         link = self.imu_link
-        pose = link.pose() * self.local
-        r = quat_to_matrix(pose.q)
-        _, omega = link.velocity()
-        accel = np.asarray(link.accel, dtype=float) - self.gravity()
-        return pose.q, r.T @ omega, r.T @ accel
+        _, q = link.pose_tuples(self._local_q)
+        omega = link.angular_velocity()
+        a = link.accel
+        g = self.ctx.physics.gravity
+        accel = (float(a[0]) - g[0], float(a[1]) - g[1], float(a[2]) - g[2])
+        return q, qrotate_inv(q, omega), qrotate_inv(q, accel)
 
     def shutdown(self):
         close(self.pub, getattr(self, 'srv', None))
@@ -83,6 +85,7 @@ class GazeboRosImu(_Imu):
         self.xyz_offset = parse_vector(self, 'xyzOffset')
         self.rpy_offset = parse_vector(self, 'rpyOffset')
         self.offset_q = quat_from_rpy(*self.rpy_offset)
+        self._offset_q = tuple(float(v) for v in self.offset_q)
         self.set_rate(self.param('updateRate', 0.0, float, warn=False))
         self.frame_name = self.param('frameName', self.body_name, warn=False)
         local = link.desc.lumped.get(self.body_name, Pose()) if self.body_name != link.name \
@@ -99,14 +102,13 @@ class GazeboRosImu(_Imu):
     def measure(self):
         from sensor_msgs.msg import Imu
         q, omega, accel = self.frame_state()
-        q = quat_multiply(self.offset_q, q)
-        q = q / np.linalg.norm(q)
+        q = qnormalize(qmul(self._offset_q, q))
         n = self.noise
         msg = Imu()
         msg.header.stamp = self.ctx.now()
         msg.header.frame_id = self.frame_name
         o = msg.orientation
-        o.x, o.y, o.z, o.w = (float(v) for v in q)
+        o.x, o.y, o.z, o.w = q
         fill_vector(msg.angular_velocity, [v + gaussian(self.rng, n) for v in omega])
         fill_vector(msg.linear_acceleration, [v + gaussian(self.rng, n) for v in accel])
         _fill_cov(msg, n * n)
@@ -189,14 +191,15 @@ class GazeboRosImuSensor(_Imu):
         self.reference_q = np.array([0.0, 0.0, 0.0, 1.0])
         if self.initial_as_reference:
             self.reference_q = (link.pose() * local).q
+        self._reference_conj = tuple(float(v) for v in quat_conjugate(self.reference_q))
+        self._offset_q = tuple(float(v) for v in self.offset_q)
         from sensor_msgs.msg import Imu
         self.pub = self.ctx.io.publisher(self.topic_name, Imu, SENSOR_QUEUE)
 
     def measure(self):
         from sensor_msgs.msg import Imu
         q, omega, accel = self.frame_state()
-        q = quat_multiply(quat_conjugate(self.reference_q), q)
-        q = quat_multiply(self.offset_q, q)
+        q = qmul(self._offset_q, qmul(self._reference_conj, q))
         rng = self.rng
         mg, sg = self.gyro_noise
         ma, sa = self.accel_noise
@@ -207,7 +210,7 @@ class GazeboRosImuSensor(_Imu):
         msg.header.stamp = self.ctx.now()
         msg.header.frame_id = self.frame_name
         o = msg.orientation
-        o.x, o.y, o.z, o.w = (float(v) + gaussian(rng, n) for v in q)
+        o.x, o.y, o.z, o.w = (v + gaussian(rng, n) for v in q)
         fill_vector(msg.linear_acceleration, [v + gaussian(rng, n) for v in accel])
         fill_vector(msg.angular_velocity, [v + gaussian(rng, n) for v in omega])
         _fill_cov(msg, n * n)
