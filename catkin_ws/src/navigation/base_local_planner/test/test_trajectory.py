@@ -179,3 +179,25 @@ def test_barred_turns_are_released_after_driving_away_at_the_robots_speed():
     assert tp.stuck_left
     tp.reset_oscillation_flags()
     assert not (tp.stuck_left or tp.stuck_right or tp.rotating_left or tp.rotating_right)
+
+
+def test_exact_outline_catches_a_wall_corner_between_the_vertex_lines_cells():
+    """bench/navigation (a door jamb at (-3.55, 2.05)): the footprint's edge cuts the jamb's
+    corner cell, the Bresenham line between the vertices' cells passes beside it
+    (CostmapModel: legal) and the robot pushed the jamb for 20 s."""
+    from base_local_planner import native
+    ox, oy, res = -6.55, -4.55, 0.05
+    data = np.zeros((140, 80), dtype=np.uint8)
+    data[129:132, 60:] = 254                       # the wall x >= -3.55, 1.90 <= y < 2.05
+    pose = np.array([[-3.62892867]]), np.array([[2.13774521]]), np.array([[-2.04744714]])
+    fp = np.array(FOOTPRINT)
+    assert native.footprint_costs(data, ox, oy, res, fp, *pose)[0] >= 0
+    assert native.footprint_costs(data, ox, oy, res, fp, *pose, exact=True)[0] == -1.0
+    # the rollout uses the exact outline
+    tp = TrajectoryPlanner(TrajectoryParams(**DIPLOMA), FOOTPRINT)
+    tp.update_plan(LocalGrid(data, res, ox, oy), [(-3.63, 2.14), (-3.63, 1.0)])
+    assert not tp.check_trajectory(-3.62892867, 2.13774521, -2.04744714, 0, 0, 0,
+                                   0.0, 0.0, 0.0)
+    # in free space both agree, costs included
+    free = np.full((140, 80), 7, dtype=np.uint8)
+    assert native.footprint_costs(free, ox, oy, res, fp, *pose, exact=True)[0] == 7.0

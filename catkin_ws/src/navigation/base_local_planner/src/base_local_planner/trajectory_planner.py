@@ -55,6 +55,10 @@ class TrajectoryParams:
         self.sim_period = 0.1
         self.meter_scoring = False
         self.max_sim_steps = 80
+        # the footprint outline's cells: those its edges cross (True), or CostmapModel's
+        # Bresenham lines between the vertices' cells (False, the original), which can pass
+        # a cell beside the edge and let a wall's corner into the footprint
+        self.exact_outline = True
         for k, v in kw.items():
             if not hasattr(self, k):
                 raise AttributeError('unknown trajectory parameter %s' % k)
@@ -293,7 +297,7 @@ class TrajectoryPlanner:
         from . import native as _native
         fp_cost = _native.footprint_costs(g.data, g.origin_x, g.origin_y, g.resolution,
                                           np.asarray(self.footprint, dtype=float).reshape(-1, 2),
-                                          xs, ys, tr.th)
+                                          xs, ys, tr.th, exact=p.exact_outline)
         illegal = ~pin.all(axis=1) | (fp_cost < 0) | ((center == LETHAL_OBSTACLE) |
                                                      (center == NO_INFORMATION)).any(axis=1)
         if len(self.footprint) < 3:
