@@ -141,3 +141,63 @@ def test_plan_cells_are_targets_whatever_their_cost():
     for native in (True, False):
         d, _ = wavefront(g, [(5, 5)], native=native)
         assert d[5, 5] == 0 and d[5, 6] == 1 and d[0, 0] == 10
+
+
+DIPLOMA = dict(max_vel_x=0.6, min_vel_x=0.35, max_vel_theta=0.85, min_vel_theta=-0.85,
+               min_in_place_vel_theta=0.9, acc_lim_theta=5, acc_lim_x=1, acc_lim_y=1,
+               holonomic_robot=False)
+
+
+def test_rotate_to_goal_speed_clamped_to_max_vel_theta():
+    from base_local_planner.trajectory_planner_ros import rotate_to_goal_speed
+    p = TrajectoryParams(**DIPLOMA)
+    # the diploma's min_in_place_vel_theta 0.9 is above max_vel_theta 0.85: 0.85 (original)
+    assert rotate_to_goal_speed(0.3, p) == pytest.approx(0.85)
+    assert rotate_to_goal_speed(-0.3, p) == pytest.approx(-0.85)
+    q = TrajectoryParams()                                     # 0.4 .. 1.0
+    assert rotate_to_goal_speed(0.2, q) == pytest.approx(0.4)
+    assert rotate_to_goal_speed(0.7, q) == pytest.approx(0.7)
+    assert rotate_to_goal_speed(-2.0, q) == pytest.approx(-1.0)
+
+
+def test_barred_turns_are_released_after_driving_away_at_the_robots_speed():
+    """Two flips bar both turn directions; driving forward at 0.35 m/s (3.5 cm per 0.1 s
+    cycle) releases them once 5 cm from where the robot last turned in place (before, the
+    release needed 5 cm within one cycle: never at this robot's speeds)."""
+    tp = TrajectoryPlanner(TrajectoryParams(**DIPLOMA), FOOTPRINT)
+    tp._update_oscillation_flags(1.0, 1.0, 0.0, 0.0, 0.0, -0.9)
+    tp._update_oscillation_flags(1.0, 1.0, 0.0, 0.0, 0.0, 0.9)
+    tp._update_oscillation_flags(1.0, 1.0, 0.0, 0.0, 0.0, -0.9)
+    assert tp.stuck_left and tp.stuck_right
+    tp._update_oscillation_flags(1.035, 1.0, 0.0, 0.35, 0.0, 0.3)
+    assert tp.stuck_left and tp.stuck_right          # 3.5 cm: still barred
+    tp._update_oscillation_flags(1.07, 1.0, 0.0, 0.35, 0.0, 0.3)
+    assert not (tp.stuck_left or tp.stuck_right or tp.rotating_left or tp.rotating_right)
+    # a new plan starts clean
+    tp._update_oscillation_flags(1.07, 1.0, 0.0, 0.0, 0.0, 0.9)
+    tp._update_oscillation_flags(1.07, 1.0, 0.0, 0.0, 0.0, -0.9)
+    assert tp.stuck_left
+    tp.reset_oscillation_flags()
+    assert not (tp.stuck_left or tp.stuck_right or tp.rotating_left or tp.rotating_right)
+
+
+def test_exact_outline_catches_a_wall_corner_between_the_vertex_lines_cells():
+    """bench/navigation (a door jamb at (-3.55, 2.05)): the footprint's edge cuts the jamb's
+    corner cell, the Bresenham line between the vertices' cells passes beside it
+    (CostmapModel: legal) and the robot pushed the jamb for 20 s."""
+    from base_local_planner import native
+    ox, oy, res = -6.55, -4.55, 0.05
+    data = np.zeros((140, 80), dtype=np.uint8)
+    data[129:132, 60:] = 254                       # the wall x >= -3.55, 1.90 <= y < 2.05
+    pose = np.array([[-3.62892867]]), np.array([[2.13774521]]), np.array([[-2.04744714]])
+    fp = np.array(FOOTPRINT)
+    assert native.footprint_costs(data, ox, oy, res, fp, *pose)[0] >= 0
+    assert native.footprint_costs(data, ox, oy, res, fp, *pose, exact=True)[0] == -1.0
+    # the rollout uses the exact outline
+    tp = TrajectoryPlanner(TrajectoryParams(**DIPLOMA), FOOTPRINT)
+    tp.update_plan(LocalGrid(data, res, ox, oy), [(-3.63, 2.14), (-3.63, 1.0)])
+    assert not tp.check_trajectory(-3.62892867, 2.13774521, -2.04744714, 0, 0, 0,
+                                   0.0, 0.0, 0.0)
+    # in free space both agree, costs included
+    free = np.full((140, 80), 7, dtype=np.uint8)
+    assert native.footprint_costs(free, ox, oy, res, fp, *pose, exact=True)[0] == 7.0

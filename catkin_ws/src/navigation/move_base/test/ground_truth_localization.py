@@ -1,11 +1,12 @@
 #!/usr/bin/python3
 """Test and bench stand-in for AMCL: publishes map -> odom so that map -> base_footprint is the
-simulator's ground truth (/gazebo/get_model_state of model `robot`, 20 Hz), future-dated by
-~transform_tolerance (0.1 s) as AMCL does. Stamped from the sim time at which it is sent (the
-ground truth is read then), not from the odometry's stamp it was computed with: a busy machine
-delaying this node must not make map -> odom look older than it is to the costmaps (whose
-pose lookups refuse a chain older than their transform_tolerance). The space scanner is skid-steered: its wheel
-odometry misjudges turns by a factor of about two, so identity map -> odom would not do."""
+simulator's ground truth (/gazebo/get_model_state of model `robot`, 20 Hz) combined with
+odom -> base_footprint at the simulator's stamp of that pose, future-dated by
+~transform_tolerance (0.1 s) as AMCL does. Stamped from the sim time at which it is sent, not
+from the odometry's stamp it was computed with: a busy machine delaying this node must not
+make map -> odom look older than it is to the costmaps (whose pose lookups refuse a chain older
+than their transform_tolerance). The space scanner is skid-steered: its wheel odometry
+misjudges turns, so identity map -> odom would not do."""
 import math
 import rospy
 import tf2_ros
@@ -37,17 +38,26 @@ def main():
         except rospy.ROSInterruptException:
             break
         try:
-            t = buf.lookup_transform(odom_frame, base_frame, rospy.Time(0))
             st = get_state(model, '')
-        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
-                tf2_ros.ExtrapolationException):
-            continue
         except rospy.ServiceException:
             get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState,
                                            persistent=True)
             continue
         if not st.success:
             continue
+        # odom -> base at the simulator's time of that pose (the response's stamp), so that
+        # map -> odom carries no motion between the two readings (the latest odom -> base
+        # instead was up to tens of ms older under load: centimetres at 0.4 m/s)
+        try:
+            t = buf.lookup_transform(odom_frame, base_frame, st.header.stamp,
+                                     rospy.Duration(0.2))
+        except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                tf2_ros.ExtrapolationException):
+            try:
+                t = buf.lookup_transform(odom_frame, base_frame, rospy.Time(0))
+            except (tf2_ros.LookupException, tf2_ros.ConnectivityException,
+                    tf2_ros.ExtrapolationException):
+                continue
         p = st.pose
         gt = (p.position.x, p.position.y, yaw_of(p.orientation))
         ox, oy = t.transform.translation.x, t.transform.translation.y

@@ -18,7 +18,7 @@ def lib():
             'blp_footprint_costs': (None, [
                 ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.c_double, ctypes.c_double,
                 ctypes.c_double, ctypes.c_void_p, ctypes.c_int, ctypes.c_void_p, ctypes.c_void_p,
-                ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.c_void_p])})
+                ctypes.c_void_p, ctypes.c_int, ctypes.c_int, ctypes.c_int, ctypes.c_void_p])})
     return _lib
 
 
@@ -33,9 +33,10 @@ def wavefront(blocked, seeds, obstacle_value, unreachable):
     return out
 
 
-def footprint_costs(data, origin_x, origin_y, resolution, footprint, xs, ys, ths):
+def footprint_costs(data, origin_x, origin_y, resolution, footprint, xs, ys, ths, exact=False):
     """data: uint8 [ny, nx] costs; footprint: (K, 2); xs/ys/ths: [N, T] poses -> float [N]:
-    -1 where some pose's footprint is illegal, else the highest footprint cost."""
+    -1 where some pose's footprint is illegal, else the highest footprint cost. exact: the
+    cells the outline's edges cross, not CostmapModel's lines between the vertices' cells."""
     ny, nx = data.shape
     d = np.ascontiguousarray(data, dtype=np.uint8)
     fp = np.ascontiguousarray(np.asarray(footprint, dtype=float).reshape(-1, 2))
@@ -46,5 +47,6 @@ def footprint_costs(data, origin_x, origin_y, resolution, footprint, xs, ys, ths
     out = np.empty(n, dtype=float)
     lib().blp_footprint_costs(d.ctypes.data, nx, ny, float(origin_x), float(origin_y),
                               float(resolution), fp.ctypes.data, len(fp), x.ctypes.data,
-                              y.ctypes.data, t.ctypes.data, n, steps, out.ctypes.data)
+                              y.ctypes.data, t.ctypes.data, n, steps, int(bool(exact)),
+                              out.ctypes.data)
     return out

@@ -55,6 +55,10 @@ class TrajectoryParams:
         self.sim_period = 0.1
         self.meter_scoring = False
         self.max_sim_steps = 80
+        # the footprint outline's cells: those its edges cross (True), or CostmapModel's
+        # Bresenham lines between the vertices' cells (False, the original), which can pass
+        # a cell beside the edge and let a wall's corner into the footprint
+        self.exact_outline = True
         for k, v in kw.items():
             if not hasattr(self, k):
                 raise AttributeError('unknown trajectory parameter %s' % k)
@@ -293,7 +297,7 @@ class TrajectoryPlanner:
         from . import native as _native
         fp_cost = _native.footprint_costs(g.data, g.origin_x, g.origin_y, g.resolution,
                                           np.asarray(self.footprint, dtype=float).reshape(-1, 2),
-                                          xs, ys, tr.th)
+                                          xs, ys, tr.th, exact=p.exact_outline)
         illegal = ~pin.all(axis=1) | (fp_cost < 0) | ((center == LETHAL_OBSTACLE) |
                                                      (center == NO_INFORMATION)).any(axis=1)
         if len(self.footprint) < 3:
@@ -408,22 +412,31 @@ class TrajectoryPlanner:
                               abs(_angle(th - self.escape_theta)) > p.escape_reset_theta):
             self.escaping = False
 
+    def reset_oscillation_flags(self):
+        self.rotating_left = self.rotating_right = False
+        self.stuck_left = self.stuck_right = False
+
     def _update_oscillation_flags(self, x, y, th, vx, vy, vth):
+        """This package's flags (see README): a flip of the in-place turn direction bars the
+        direction turned to, a second flip bars both (forward arcs only); everything is
+        released once the robot is more than oscillation_reset_dist from where it last turned
+        in place (the original's reference point). The release used to compare consecutive
+        forward cycles instead: more than 0.05 m per 0.1 s cycle needs 0.5 m/s, above what
+        the space scanner drives, so once barred the turns stayed barred for good (into the
+        following goals: loops at min_vel_x where a turn in place was due)."""
         p = self.p
         if self.escaping:
             self._check_escape(x, y, th)
-        if vx > 0 or self.escaping:
-            if math.hypot(x - self.prev_x, y - self.prev_y) > p.oscillation_reset_dist:
-                self.rotating_left = self.rotating_right = False
-                self.stuck_left = self.stuck_right = False
         if vx == 0 and vth < 0:
             self.stuck_left = self.stuck_left or self.rotating_left
             self.rotating_right = True
+            self.prev_x, self.prev_y = x, y
         elif vx == 0 and vth > 0:
             self.stuck_right = self.stuck_right or self.rotating_right
             self.rotating_left = True
-        elif vx > 0:
             self.prev_x, self.prev_y = x, y
+        if math.hypot(x - self.prev_x, y - self.prev_y) > p.oscillation_reset_dist:
+            self.reset_oscillation_flags()
 
     def check_trajectory(self, x, y, th, vx, vy, vth, vx_samp, vy_samp, vth_samp):
         """True when the sampled command is legal (the original's checkTrajectory)."""

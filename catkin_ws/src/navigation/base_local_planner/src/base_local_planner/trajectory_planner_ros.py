@@ -18,6 +18,15 @@ def _angle(a):
     return math.atan2(math.sin(a), math.cos(a))
 
 
+def rotate_to_goal_speed(v, p):
+    """rotateToGoal's last step: min_in_place_vel_theta re-enforced over the acceleration
+    limits, within [min_vel_theta, max_vel_theta] (so a min_in_place_vel_theta above
+    max_vel_theta, as the diploma's 0.9 over 0.85, turns at max_vel_theta)."""
+    if v > 0.0:
+        return min(p.max_vel_theta, max(p.min_in_place_vel_theta, v))
+    return max(p.min_vel_theta, min(-p.min_in_place_vel_theta, v))
+
+
 class _Params:
     """Reads ~<name>/param with legacy fallbacks, keeping track of what was set."""
 
@@ -125,6 +134,9 @@ class TrajectoryPlannerROS(BaseLocalPlanner):
                          'before using this planner')
             return False
         self.global_plan = list(plan)
+        # a new plan (a new goal, or a replan after a failed control) starts without the
+        # previous one's barred turns (as DWAPlanner::setPlan resets its oscillation flags)
+        self.planner.reset_oscillation_flags()
         self.xy_tolerance_latch = False
         self.reached_goal = False
         self.rotating_to_goal = False
@@ -246,9 +258,8 @@ class TrajectoryPlannerROS(BaseLocalPlanner):
         max_acc_vel = abs(vel[2]) + p.acc_lim_theta * p.sim_period
         min_acc_vel = abs(vel[2]) - p.acc_lim_theta * p.sim_period
         v = math.copysign(min(max(abs(v), min_acc_vel), max_acc_vel), v)
-        v_max = math.copysign(min(math.sqrt(2 * p.acc_lim_theta * abs(ang)), abs(v)), v)
-        v = math.copysign(max(abs(v_max), p.min_in_place_vel_theta), v_max) \
-            if abs(v_max) < p.min_in_place_vel_theta else v_max
+        v = math.copysign(min(math.sqrt(2 * p.acc_lim_theta * abs(ang)), abs(v)), v)
+        v = rotate_to_goal_speed(v, p)
         if self.planner.check_trajectory(pose[0], pose[1], pose[2], *vel, 0.0, 0.0, v):
             return conv.twist(0.0, 0.0, v)
         return conv.twist(0, 0, 0)
