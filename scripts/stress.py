@@ -12,6 +12,7 @@ import argparse
 import json
 import os
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -37,12 +38,21 @@ def one_round(k, args, env):
     t = time.monotonic()
     with open(log, 'w') as fh:
         p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env, cwd=REPO)
-        for line in p.stdout:       # the round's progress on the terminal and in its log
-            fh.write(line)
-            fh.flush()
-            if line.startswith(('===', 'FAILED', '    FAILED')) or 'passed,' in line:
-                print('  [%d] %s' % (k, line.rstrip()), flush=True)
-        p.wait()
+        try:
+            for line in p.stdout:       # the round's progress on the terminal and in its log
+                fh.write(line)
+                fh.flush()
+                if line.startswith(('===', 'FAILED', '    FAILED')) or 'passed,' in line:
+                    print('  [%d] %s' % (k, line.rstrip()), flush=True)
+            p.wait()
+        except BaseException:
+            # stopped (Ctrl-C, SIGTERM): run_tests.py stops its tests and their processes
+            p.terminate()
+            try:
+                p.wait(180)
+            except subprocess.TimeoutExpired:
+                p.kill()
+            raise
     try:
         with open(summary_path) as fh:
             summary = json.load(fh)
@@ -62,6 +72,10 @@ def main():
     ap.add_argument('-k', dest='keyword', help='as run_tests.py -k')
     args = ap.parse_args()
 
+    def stop(signum, _frame):
+        # SIGTERM unwinds as Ctrl-C does: the running round and the CPU load are stopped
+        raise KeyboardInterrupt('stress: signal %d' % signum)
+    signal.signal(signal.SIGTERM, stop)
     os.makedirs(OUT, exist_ok=True)
     # no subreaper or orphan reaping here: run_tests.py reaps what each test leaves behind, and
     # reaping every descendant of this process would kill the CPU load itself
