@@ -59,7 +59,7 @@ class Echo:
                 out.append((int(f[0]) * 1e-9, tuple(float(v) for v in f[1:7])))
         return out
 
-    def wait_count(self, n, timeout=10.0):
+    def wait_count(self, n, timeout=60.0):
         wait_for(lambda: len(self.twists()) >= n, timeout, what='%d twists on %s' % (n, TOPIC))
         return [t for _, t in self.twists()]
 
@@ -73,11 +73,11 @@ def test_keys_speeds_stop_and_ctrl_c(roscore, tmp_path):
     echo = None
     try:
         # nobody listens yet: it says so (every 2.5 s) and publishes nothing
-        wait_for(lambda: 'Waiting for subscriber to connect to %s' % TOPIC in teleop.text, 10,
+        wait_for(lambda: 'Waiting for subscriber to connect to %s' % TOPIC in teleop.text, 60,
                  what='the waiting message')
         assert 'Moving around' not in teleop.text
         echo = Echo(roscore.env, str(tmp_path / 'echo.log'))
-        got = echo.wait_count(1, 15)            # first a zero twist, then the help text
+        got = echo.wait_count(1, 60)            # first a zero twist, then the help text
         assert got == [tw()]
         wait_for(lambda: 'currently:\tspeed 0.5\tturn 1.0 ' in teleop.text, 60, what='speed line')
         for needle in ('Reading from the keyboard  and Publishing to Twist!', 'u    i    o',
@@ -115,7 +115,7 @@ def test_keys_speeds_stop_and_ctrl_c(roscore, tmp_path):
         expected.append(tw(s))
         assert echo.wait_count(len(expected)) == expected
         teleop.key('\x03')                       # Ctrl-C: zero twist, exit 0
-        wait_for(lambda: not teleop.proc.alive(), 10, what='teleop to exit on Ctrl-C')
+        wait_for(lambda: not teleop.proc.alive(), 60, what='teleop to exit on Ctrl-C')
         assert teleop.proc.popen.returncode == 0
         expected.append(tw())
         assert echo.wait_count(len(expected)) == expected
