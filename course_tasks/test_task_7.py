@@ -69,3 +69,31 @@ def test_hello_world_on_the_emulated_mega(sketchbook, roscore, tmp_path):
             assert 'data: "hello world!"' in p.stdout
         finally:
             node.stop()
+
+
+def test_memory_report_without_avr_size_c(sketchbook):
+    """firmware/build's own "AVR Memory Usage" report (for Debian 13's avr-size, which has no
+    -C) says what avr-size -C says where it has it, and sums the sections otherwise."""
+    import importlib.machinery
+    import importlib.util
+    loader = importlib.machinery.SourceFileLoader('firmware_build', BUILD)
+    spec = importlib.util.spec_from_loader('firmware_build', loader)
+    build = importlib.util.module_from_spec(spec)
+    loader.exec_module(build)
+    out = sketchbook / 'build_report'
+    p = subprocess.run([BUILD, str(sketchbook / 'hello_world'), '--ros-lib',
+                        str(sketchbook / 'libraries' / 'ros_lib'), '--out', str(out)],
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stdout[-3000:] + p.stderr[-3000:]
+    elf = str(out / 'hello_world.elf')
+    report = build.memory_usage(elf)
+    assert 'Device: atmega2560' in report and 'Program:' in report and 'Data:' in report
+    c = subprocess.run(['avr-size', '--mcu=atmega2560', '-C', elf], capture_output=True, text=True)
+    if c.returncode == 0:       # Debian 12's binutils-avr: the same report, line for line
+        def words(t):
+            return [line.split() for line in t.splitlines() if line.strip()]
+        assert words(report) == words(c.stdout)
+    berkeley = subprocess.run(['avr-size', elf], capture_output=True, text=True).stdout.split()
+    text, data, bss = (int(v) for v in berkeley[6:9])
+    assert 'Program: %7d bytes' % (text + data) in report
+    assert 'Data:    %7d bytes' % (data + bss) in report
