@@ -328,6 +328,11 @@ class Lab2Observer:
 
 def node_argv(master, node):
     """The command line of a ROS node (from its PID over XML-RPC), or []."""
+    return node_process(master, node)[1]
+
+
+def node_process(master, node):
+    """(host PID, command line) of a ROS node (its PID over XML-RPC), or (None, [])."""
     try:
         import xmlrpc.client
         uri = master.lookupNode(node)
@@ -335,10 +340,18 @@ def node_argv(master, node):
         from grading.sandbox import host_pid
         pid = host_pid(pid)     # a sandboxed node reports its pid in the sandbox's namespace
         if pid is None:
-            return []
+            return None, []
+        return pid, process_argv(pid)
+    except Exception:   # node gone or not answering: not counted
+        return None, []
+
+
+def process_argv(pid):
+    """The command line of process `pid`, or [] when it is gone."""
+    try:
         with open('/proc/%d/cmdline' % pid, 'rb') as f:
             return [a.decode(errors='replace') for a in f.read().split(b'\0') if a]
-    except Exception:   # node gone or not answering: not counted
+    except OSError:
         return []
 
 
@@ -432,6 +445,7 @@ class Lab3Observer:
         res = {'kinds': {}, 'rviz': {}}
         argv_seen = {}
         rviz_up = False
+        rviz_pid = None
         try:
             while not rospy.is_shutdown():
                 now = time.monotonic()
@@ -450,7 +464,7 @@ class Lab3Observer:
                 for n in sorted(nodes):
                     if n in argv_seen or n == rospy.get_name() or n == '/rosout':
                         continue
-                    argv = node_argv(master, n)
+                    pid, argv = node_process(master, n)
                     if argv:
                         argv_seen[n] = argv
                         kind = lab3.node_kind(argv)
@@ -458,6 +472,7 @@ class Lab3Observer:
                             res['kinds'].setdefault(kind, []).append(n)
                             if kind == 'rviz':
                                 res['rviz']['argv'] = argv
+                                rviz_pid = pid
                 with self.lock:
                     frames = set(self.frames)
                 # RViz is up once its display manager listens to /tf (the render window exists)
@@ -474,7 +489,9 @@ class Lab3Observer:
                 if now - start > self.launch_limit:
                     break
                 time.sleep(0.3)
-            if 'rviz' in res['kinds'] and not node_argv(master, res['kinds']['rviz'][0]):
+            # still running: judged by its process (the same PID, the same command line), not
+            # by its XML-RPC answer, which a loaded machine can delay past the request
+            if 'rviz' in res['kinds'] and process_argv(rviz_pid) != res['rviz']['argv']:
                 res['kinds'].pop('rviz')
                 res['error'] = res.get('error') or 'rviz exited: %s' % plain(launch_failure(log))
             elif 'rviz' in res['kinds'] and not res.get('ready_after') and not rviz_up:
