@@ -25,17 +25,11 @@ def rpy_from_quat(q):
     roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
     sinp = max(-1.0, min(1.0, 2 * (w * y - z * x)))
     pitch = math.asin(sinp)
-    yaw = math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
-    return np.array([roll, pitch, yaw])
+    return np.array([roll, pitch, yaw_of(q)])
 
 
 def quat_multiply(a, b):
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return np.array([aw * bx + ax * bw + ay * bz - az * by,
-                     aw * by - ax * bz + ay * bw + az * bx,
-                     aw * bz + ax * by - ay * bx + az * bw,
-                     aw * bw - ax * bx - ay * by - az * bz])
+    return np.array(qmul(a, b))
 
 
 def quat_conjugate(q):
