@@ -85,7 +85,11 @@ class GazeboApi:
         self._next_marker = 0.0         # wall time of the next refresh
         node.step_hooks.append(self.after_step)
         node.group_limits.append(self.next_update)
-        self.publish_markers()
+        # under the node's lock as every entry into the engine: the spawn services above are
+        # already up, and a spawn_model called at once added a model while the scene was read
+        # ("dictionary changed size during iteration": the simulator died at start-up)
+        with node.lock:
+            self.publish_markers()
 
     # ----------------------------------------------------------------- helpers
     @property
