@@ -138,7 +138,8 @@ class Sandbox:
         ROS_HOME in the private /tmp."""
         if self.student_env:
             # the student's own overlay environment; only the master's address from the caller
-            keep = {k: env[k] for k in ('ROS_MASTER_URI', 'ROS_IP', 'DISPLAY', 'QT_QPA_PLATFORM') if k in env}
+            keep = {k: env[k] for k in ('ROS_MASTER_URI', 'ROS_IP', 'DISPLAY', 'QT_QPA_PLATFORM',
+                                         'GALLIUM_DRIVER', 'DRAW_USE_LLVM') if k in env}
             env = dict(self.student_env, **keep)
             for k in ('DISPLAY', 'QT_QPA_PLATFORM'):   # the caller's say, not the overlay's
                 if k not in keep:
