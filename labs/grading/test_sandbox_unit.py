@@ -135,3 +135,42 @@ def test_no_sandbox_here_grades_as_self_check(monkeypatch, tmp_path, capsys):
     assert 'name="self-check"' in junit.read_text() and 'lab2-123451-self-check' in junit.read_text()
     assert cli.main(['lab2', '--isu', '123451', '--repo', str(tmp_path), '--junit', str(junit),
                      '--require-sandbox']) == 2
+
+
+FIND_NODE = r'''
+import os, subprocess, sys
+from grading import sandbox
+box = sandbox.Sandbox.from_json(sys.argv[1])
+p = subprocess.Popen(box.wrap(['bash', '-c', 'sleep 60 & echo $!; sleep 1 & sleep 1 & wait']),
+                     stdout=subprocess.PIPE, env=box.env(dict(os.environ)))
+try:
+    init = sandbox.pidns_of_child(p.pid)
+    sandbox.remember_pidns(init)
+    inner = int(p.stdout.readline())          # the pid `sleep 60` has inside the sandbox
+    pid = sandbox.host_pid(inner)
+    if pid is None:
+        sys.exit('host_pid(%d) found no process in the sandbox' % inner)
+    with open('/proc/%d/cmdline' % pid, 'rb') as f:
+        argv = f.read().split(b'\0')[:2]
+    print(init is not None, inner, pid != inner, argv == [b'sleep', b'60'], sandbox.count_procs(init))
+finally:
+    p.kill()
+'''
+
+
+@pytest.mark.parametrize('ptrace', ['with', 'without'])
+def test_grader_finds_sandboxed_processes(box, ptrace):
+    """The grader maps a sandboxed node's own PID (what getPid answers) to the process it sees,
+    and counts the sandbox's processes (the fork-bomb watch) — also without CAP_SYS_PTRACE, as
+    root inside a Docker container is: /proc/PID/ns/* of the sandbox user's processes cannot
+    be read there, so the grader saw none of a student's nodes."""
+    drop = [] if ptrace == 'with' else ['setpriv', '--inh-caps=-sys_ptrace',
+                                          '--bounding-set=-sys_ptrace', '--']
+    env = dict(os.environ, PYTHONPATH=LABS_DIR + ':' + os.environ.get('PYTHONPATH', ''))
+    r = subprocess.run(drop + ['/usr/bin/python3', '-c', FIND_NODE, box.to_json()], env=env,
+                       stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60, text=True)
+    assert r.returncode == 0, r.stdout
+    found, inner, mapped, argv_ok, count = r.stdout.split()
+    assert (found, mapped, argv_ok) == ('True', 'True', 'True'), r.stdout
+    # bwrap's init, bash, sleep 60 and the two sleep 1 (still running: they are read at once)
+    assert int(count) >= 3, r.stdout
