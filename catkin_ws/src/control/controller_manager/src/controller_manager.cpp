@@ -535,15 +535,17 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
   switch_params_.do_switch = true;
   switch_pending_ = true;
 
-  // update() performs the switch: wait for it, but never forever.
+  // update() performs the switch: wait for it, but not forever unless told so (a simulator,
+  // whose paused world calls no update(), waits as upstream does)
   ROS_DEBUG("Request atomic controller switch from realtime loop");
+  const bool bounded = switch_wait_timeout_ > 0.0;
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration<double>(switch_wait_timeout_ + std::max(0.0, timeout));
   while (switch_params_.do_switch)
   {
     if (!ros::ok())
       break;
-    if (std::chrono::steady_clock::now() >= deadline)
+    if (bounded && std::chrono::steady_clock::now() >= deadline)
       break;
     switch_done_.wait_for(switch_guard, std::chrono::milliseconds(10));
   }

@@ -4,6 +4,7 @@
 // Run by test/cm_switch.test (a master is needed for parameters). Time is simulated: the
 // loop thread advances its own clock by 10 ms per update.
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <thread>
 
@@ -330,6 +331,25 @@ TEST_F(CMSwitchTest, StalledLoopDoesNotHangTheCaller)
   EXPECT_EQ("initialized", cm_->state("a"));  // the withdrawn switch is not performed later
   cm_->setSwitchWaitTimeout(30.0);
   EXPECT_TRUE(cm_->switchController({ "a" }, {}, Req::STRICT));
+}
+
+TEST_F(CMSwitchTest, UnboundedWaitOutlastsAPausedLoop)
+{
+  // gazebo_ros_control's setting: a paused world calls no update(); the switch requested
+  // meanwhile is carried out once the loop runs again, however long the pause (here 2 s, 4x
+  // the bound after which StalledLoopDoesNotHangTheCaller's switch is withdrawn)
+  ASSERT_TRUE(load("a", "local/Effort", { "joint1" }));
+  paused_ = true;
+  cm_->setSwitchWaitTimeout(0.0);
+  std::atomic<int> result{ -1 };
+  std::thread caller([this, &result]() { result = cm_->switchController({ "a" }, {}, Req::STRICT) ? 1 : 0; });
+  std::this_thread::sleep_for(std::chrono::milliseconds(2000));
+  EXPECT_EQ(-1, result.load());  // still waiting, not withdrawn (state() would wait for it too)
+  paused_ = false;
+  caller.join();
+  cm_->setSwitchWaitTimeout(30.0);
+  EXPECT_EQ(1, result.load());
+  EXPECT_EQ("running", cm_->state("a"));
 }
 
 TEST_F(CMSwitchTest, ResetRestartsRunningControllers)

@@ -140,6 +140,9 @@ bool GazeboRosControlNode::init(std::string* error)
     return false;
   }
   controller_manager_.reset(new controller_manager::ControllerManager(robot_hw_sim_.get(), model_nh_));
+  // a paused world calls no update(): a switch requested meanwhile waits for the world to run,
+  // however long (as with Gazebo's own plugin), instead of being withdrawn after 30 s
+  controller_manager_->setSwitchWaitTimeout(0.0);
 
   if (options_.estop_topic.size())
     estop_sub_ = model_nh_.subscribe(options_.estop_topic, 1, &GazeboRosControlNode::estopCallback, this);

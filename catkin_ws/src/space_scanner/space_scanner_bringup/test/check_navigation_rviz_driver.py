@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Goal driver of test_navigation_rviz.py (a node of its own, so the pytest process stays free
-of rospy): waits for AMCL, sends one move_base goal, prints one JSON line per event on stdout:
+of rospy): waits for AMCL and for RViz to be connected to the global plan's topic, sends one
+move_base goal, prints one JSON line per event on stdout:
   {"kind": "plan", "poses": [[x, y], ...]}             every global plan (map frame)
   {"kind": "result", "state": N, "text": ..., "truth": [x, y], "amcl": [x, y]}
 then waits for the flag file argv[3] (the test's screenshots are done) or 120 s.
@@ -9,8 +10,10 @@ import json
 import os
 import sys
 import time
+import xmlrpc.client
 
 import actionlib
+import rosgraph
 import rospy
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import PoseWithCovarianceStamped
@@ -19,6 +22,7 @@ from nav_msgs.msg import Path
 from std_srvs.srv import Empty
 
 WALL_TIMEOUT = 240.0
+PLAN = '/move_base/NavfnROS/plan'
 
 
 def emit(**kw):
@@ -35,12 +39,23 @@ def wait(cond, what, timeout=WALL_TIMEOUT):
         time.sleep(0.1)
 
 
+def connected(node, topic, peer):
+    """True when `node` has a live connection on `topic` with node `peer` (its XML-RPC
+    getBusInfo, as `rosnode info` shows it)."""
+    try:
+        uri = rosgraph.Master(rospy.get_name()).lookupNode(node)
+        _, _, info = xmlrpc.client.ServerProxy(uri).getBusInfo(rospy.get_name())
+    except Exception:   # not up yet
+        return False
+    return any(len(c) > 5 and c[1] == peer and c[4] == topic and c[5] for c in info)
+
+
 def main():
     gx, gy, flag = float(sys.argv[1]), float(sys.argv[2]), sys.argv[3]
     rospy.init_node('navigation_rviz_driver', anonymous=True, disable_signals=True)
     got = {}
     rospy.Subscriber('/amcl_pose', PoseWithCovarianceStamped, lambda m: got.__setitem__('amcl', m))
-    rospy.Subscriber('/move_base/NavfnROS/plan', Path, lambda m: emit(
+    rospy.Subscriber(PLAN, Path, lambda m: emit(
         kind='plan', poses=[[p.pose.position.x, p.pose.position.y] for p in m.poses]))
     rospy.wait_for_service('/gazebo/get_model_state', WALL_TIMEOUT)
     truth = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState)
@@ -49,6 +64,10 @@ def main():
         emit(kind='error', text='no move_base action server after %.0f s' % WALL_TIMEOUT)
         return 1
     wait(lambda: 'amcl' in got, 'amcl_pose')
+    # a user sends the goal from RViz, once it is up: move_base publishes the global plan once
+    # per goal (planner_frequency 0, not latched), so an RViz still starting on a loaded
+    # machine missed it and showed none (a stress round)
+    wait(lambda: connected('/move_base', PLAN, '/rviz'), 'RViz connected to ' + PLAN)
     goal = MoveBaseGoal()
     goal.target_pose.header.frame_id = 'map'
     goal.target_pose.header.stamp = rospy.Time.now()

@@ -77,7 +77,8 @@ public:
   /// Names of the loaded controllers.
   void getControllerNames(std::vector<std::string>& v);
 
-  /// Wall-time bound for a caller's wait on a switch (default 30 s); for tests and slow setups.
+  /// Wall-time bound for a caller's wait on a switch (default 30 s); 0 or less: wait while
+  /// ros::ok(), as upstream (gazebo_ros_control: a paused world calls no update()).
   void setSwitchWaitTimeout(double seconds) { switch_wait_timeout_ = seconds; }
 
 protected:
