@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """bringup_sim.test: gmapping.launch sim:=true teleop:=false. The EKF is the publisher of `odom`
 (robot_localization's odometry/filtered remapped), Madgwick's filter publishes imu/data, the
-robot turns on /diffbot_controller/cmd_vel, slam_gmapping publishes a map with walls and the
+robot turns on /diffbot_controller/cmd_vel until slam_gmapping publishes a map with walls and the
 map -> odom transform, and `rosrun map_server map_saver -f` writes it."""
 import os
 import subprocess
 import tempfile
+import time
 import unittest
 
 import rosgraph
@@ -46,14 +47,23 @@ class BringupSim(unittest.TestCase):
         wait(lambda: pub.get_num_connections() > 0, 'diffbot_controller listening')
         cmd = Twist()
         cmd.angular.z = 0.8
-        t_end = rospy.get_time() + 6.0       # turn on the spot: the lidar sees the whole room
-        while rospy.get_time() < t_end and not rospy.is_shutdown():
+        # turn on the spot until slam_gmapping publishes a map made after 4 s of turning (3.2 rad:
+        # the lidar has seen the room). gmapping updates its map only on a processed scan (one
+        # per angularUpdate of turning) once map_update_interval has passed, so a map asked for
+        # after the robot stopped may never come: the update due at 5.6 s of a 6 s turn fell
+        # before the stop or after it, depending on the machine (a Debian 13 container run)
+        start = rospy.get_time()
+        deadline = time.monotonic() + WALL_TIMEOUT
+
+        def mapped():
+            return '/map' in got and got['/map'].header.stamp.to_sec() >= start + 4.0
+        while not mapped():
+            self.assertFalse(rospy.is_shutdown(), 'shut down while turning')
+            self.assertLess(time.monotonic(), deadline, 'no map from slam_gmapping after %.0f s '
+                            'of turning (%.1f s of sim time)' % (WALL_TIMEOUT, rospy.get_time() - start))
             pub.publish(cmd)
             rospy.sleep(0.05)
         pub.publish(Twist())
-        start = rospy.get_time()
-        wait(lambda: '/map' in got and got['/map'].header.stamp.to_sec() > start,
-                  'a map from slam_gmapping after the turn')
         m = got['/map']
         occupied = sum(1 for v in m.data if v == 100)
         free = sum(1 for v in m.data if v == 0)
