@@ -238,13 +238,9 @@ def main():
     # PYTHONUNBUFFERED in its environment and 4 tests waited for output that never came
     env['PYTHONUNBUFFERED'] = '1'
     # OpenGL (RViz and Qt windows on the tests' Xvfb, the simulator's cameras through EGL) is
-    # drawn by Mesa's softpipe, which has no JIT: Debian 12's llvmpipe compiles every shader
-    # with LLVM 15, which crashes now and then inside libLLVM (RViz died at start-up with
-    # SIGSEGV in libLLVM-15.so.1 in a CI run and in 1 of 5 navigation.rviz runs here; 0 of 220
-    # bare starts of sensors.rviz; the same crash as llvm-project#57850).
-    # The pictures are the same GL 3.3 rendering and the GUI tests take as long; bench/ and
-    # users keep llvmpipe (or their GPU).
-    env.update(GALLIUM_DRIVER='softpipe', DRAW_USE_LLVM='0')
+    # drawn by Mesa's softpipe: llvmpipe's JIT crashes now and then inside Debian 12's LLVM 15
+    # (course_testing.SOFTWARE_GL); the GUI tests take as long
+    env.update(course_testing.SOFTWARE_GL)
     env['COURSE_TEST_FULL'] = '1' if args.full else ''
     runner = Runner()
     t0 = time.monotonic()

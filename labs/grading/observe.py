@@ -13,7 +13,7 @@ import time
 import rosgraph
 import roslib.message
 import rospy
-from course_testing import stop_tree
+from course_testing import SOFTWARE_GL, stop_tree
 
 IGNORED_NODES = ('/rosout',)
 
@@ -439,8 +439,8 @@ class Lab3Observer:
             env['DISPLAY'] = xvfb.display
             # the grading's own screen, that nobody looks at: drawn by Mesa's softpipe (no
             # JIT), so that llvmpipe's rare crash inside LLVM 15 cannot end a student's RViz
-            env.setdefault('GALLIUM_DRIVER', 'softpipe')
-            env.setdefault('DRAW_USE_LLVM', '0')
+            for k, v in SOFTWARE_GL.items():
+                env.setdefault(k, v)
         env.pop('QT_QPA_PLATFORM', None)
         cmd = ['roslaunch', lab3.PACKAGE, lab3.LAUNCH] + lab3.variant_args(lab3.launch_args(launch), self.isu)
         log = os.path.join(self.logdir, 'roslaunch.log')

@@ -27,6 +27,7 @@ import shutil
 import subprocess
 import time
 
+from course_testing import SOFTWARE_GL
 from grading.common import LABS_DIR
 
 REPO = os.path.dirname(LABS_DIR)
@@ -140,7 +141,7 @@ class Sandbox:
         if self.student_env:
             # the student's own overlay environment; only the master's address from the caller
             keep = {k: env[k] for k in ('ROS_MASTER_URI', 'ROS_IP', 'DISPLAY', 'QT_QPA_PLATFORM',
-                                         'GALLIUM_DRIVER', 'DRAW_USE_LLVM') if k in env}
+                                         *SOFTWARE_GL) if k in env}
             env = dict(self.student_env, **keep)
             for k in ('DISPLAY', 'QT_QPA_PLATFORM'):   # the caller's say, not the overlay's
                 if k not in keep:

@@ -3,7 +3,7 @@ from course_testing.proc import (Proc, start, free_port, wait_for, run, stop_tre
                                    reap_orphans)
 from course_testing.load import CpuLoad, cpu_load
 from course_testing.roscore import RosCore
-from course_testing.xvfb import Xvfb, screenshot
+from course_testing.xvfb import SOFTWARE_GL, Xvfb, screenshot
 
 __all__ = ['Proc', 'start', 'free_port', 'wait_for', 'run', 'stop_tree', 'become_subreaper',
-           'reap_orphans', 'CpuLoad', 'cpu_load', 'RosCore', 'Xvfb', 'screenshot']
+           'reap_orphans', 'CpuLoad', 'cpu_load', 'RosCore', 'SOFTWARE_GL', 'Xvfb', 'screenshot']
