@@ -1,5 +1,5 @@
 # The course image: Debian (12 bookworm or 13 trixie) with its own ROS 1 packages and this
-# repository built. Its only build step is scripts/setup.sh, the same script a host install
+# repository built. Its only build steps are scripts/setup.sh, the same script a host install
 # runs, so the test suite (which runs setup.sh on a fresh machine) tests the image's steps too.
 #
 #   DOCKER_BUILDKIT=1 docker build --build-arg DEBIAN_RELEASE=trixie -t ros-course:trixie .
@@ -24,10 +24,16 @@ ENV DEBIAN_FRONTEND=noninteractive \
     LC_ALL=C.UTF-8
 
 WORKDIR /course
+# Two layers, both scripts/setup.sh: the Debian packages first (from setup.sh and deps/ alone,
+# so a rebuild after a change of the code reuses them), then the rest of setup.sh on the whole
+# repository (PyPI and npm packages, catkin_make with the ccache kept between builds).
+COPY scripts/setup.sh /course/scripts/setup.sh
+COPY deps/ /course/deps/
+RUN --mount=type=cache,target=/var/cache/apt,sharing=private \
+    bash /course/scripts/setup.sh --debian-only
 COPY . /course
 RUN --mount=type=secret,id=hostca \
     --mount=type=cache,target=/var/cache/course-ccache \
-    --mount=type=cache,target=/var/cache/apt,sharing=private \
     export CCACHE_DIR=/var/cache/course-ccache ROS_PARALLEL_JOBS="-j$(nproc)" PIP_NO_CACHE_DIR=1 \
  && if [ -s /run/secrets/hostca ]; then \
         export PIP_CERT=/run/secrets/hostca SSL_CERT_FILE=/run/secrets/hostca \

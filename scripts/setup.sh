@@ -3,7 +3,16 @@
 # packages (workspace-local), and the catkin workspace. Idempotent: a second run only rebuilds
 # what changed. The Dockerfile runs exactly this script.
 # deps/*.txt lines may start with `RELEASE:` (e.g. `trixie: pkg`): used on that release only.
+#   scripts/setup.sh                 everything
+#   scripts/setup.sh --debian-only   the Debian packages only (needs only scripts/ and deps/: the
+#                                    Dockerfile's first layer, kept while deps/ does not change)
 set -euo pipefail
+DEBIAN_ONLY=""
+case "${1:-}" in
+    "") ;;
+    --debian-only) DEBIAN_ONLY=1 ;;
+    *) printf '[setup] ERROR: unknown option %s (usage: setup.sh [--debian-only])\n' "$1" >&2; exit 2 ;;
+esac
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$REPO"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"
@@ -51,6 +60,10 @@ if ! command -v npm >/dev/null; then
     log "installing Debian's npm"
     $SUDO apt-get update
     DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y --no-install-recommends npm
+fi
+if [ -n "$DEBIAN_ONLY" ]; then
+    log "done: Debian packages (--debian-only)"
+    exit 0
 fi
 
 # 2. PyPI packages into a workspace-local directory ------------------------------------

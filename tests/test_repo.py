@@ -43,7 +43,13 @@ def test_dockerfile_runs_setup_sh_and_nothing_else():
     assert instructions[:2] == ['ARG DEBIAN_RELEASE=bookworm', 'FROM debian:${DEBIAN_RELEASE}']
     assert not re.match(r'\s*#\s*syntax=', text)   # a frontend image would be pulled from Docker Hub
     runs = [l for l in instructions if l.startswith('RUN')]
-    assert len(runs) == 1 and 'scripts/setup.sh' in runs[0], runs
+    # two layers: the Debian packages (kept while setup.sh and deps/ do not change), then all
+    assert len(runs) == 2 and all(re.search(r'bash /course/scripts/setup\.sh( |$)', r) for r in runs), runs
+    assert runs[0].endswith('setup.sh --debian-only') and not runs[1].endswith('--debian-only')
+    copies = [l for l in instructions if l.startswith('COPY')]
+    assert copies == ['COPY scripts/setup.sh /course/scripts/setup.sh', 'COPY deps/ /course/deps/',
+                      'COPY . /course'], copies
+    assert instructions.index(copies[-1]) < instructions.index(runs[1])
     # the image installs nothing by itself: every package comes from setup.sh's lists
     assert 'apt-get' not in text and 'pip ' not in text
     assert re.search(r'^COPY \. /course$', text, re.M)
@@ -95,6 +101,19 @@ def test_debian_deps_installed():
         if r.stdout != 'install ok installed':
             missing.append(pkg)
     assert not missing, 'deps/debian.txt lists packages that are not installed: %s' % missing
+
+
+def test_setup_debian_only_installs_packages_and_stops():
+    """The Dockerfile's first layer: setup.sh --debian-only checks (installs) the Debian
+    packages and stops there - no PyPI, npm or catkin_make."""
+    r = subprocess.run(['bash', os.path.join(REPO, 'scripts', 'setup.sh'), '--debian-only'],
+                       capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert 'Debian packages: all' in r.stdout and 'done: Debian packages (--debian-only)' in r.stdout
+    assert 'PyPI' not in r.stdout and 'catkin' not in r.stdout, r.stdout
+    r = subprocess.run(['bash', os.path.join(REPO, 'scripts', 'setup.sh'), '--bogus'],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and 'unknown option --bogus' in r.stderr, r.stderr
 
 
 @pytest.mark.serial   # runs setup.sh: rebuilds the workspace every other test uses
