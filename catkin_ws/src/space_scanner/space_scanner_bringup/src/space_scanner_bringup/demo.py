@@ -142,10 +142,15 @@ def navigate(out, env, display, map_yaml, goal_budget, say):
     log = os.path.join(out, 'navigation.log')
     args = ['roslaunch', 'space_scanner_bringup', 'navigation.launch', 'sim:=true',
             'map_file:=%s' % map_yaml, 'rviz:=%s' % ('true' if display else 'false')]
+    # this process still holds phase 1's last /clock: wait for the new simulation's clock,
+    # which starts again at 0 (goals stamped with the old time would be older than every
+    # later goal, and move_base's simple action server recalls a goal older than its last)
+    old_clock = sim_now()
     launch = Proc(args, env=env, log=log)
     results = []
     try:
-        wait_for(lambda: sim_now() > 0, 300, 'the simulation clock (see %s)' % log)
+        wait_for(lambda: 0 < sim_now() < old_clock or (old_clock == 0 and sim_now() > 0), 300,
+                 'the simulation clock (see %s)' % log)
         rec = Recorder()
         client = actionlib.SimpleActionClient('move_base', MoveBaseAction)
         if not client.wait_for_server(rospy.Duration(300)):
