@@ -139,15 +139,34 @@ deadline = time.time() + 120   # a bound on a broken run, not a speed requiremen
 while ((len(positions) < n or (motion and not drove_and_turned()))
        and time.time() < deadline and not rospy.is_shutdown()):
     time.sleep(0.05)
-time.sleep(0.2)
 seen = set((p[0], p[1]) for p in poses)
-compared = [q for q in positions if q[2] >= 5]
-# turtlesim's pose publisher keeps one message for a slow subscriber: on a loaded machine this
-# probe may miss a pose the republisher got. Such a position lies on the turtle's path between
-# two poses it did see (a tick is 2 m/s x 16 ms = 3.2 cm): within 10 cm of a seen pose
-def near(q):
-    return any(abs(q[0] - p[0]) < 0.1 and abs(q[1] - p[1]) < 0.1 for p in poses)
-matched = sum(1 for q in compared if (q[0], q[1]) in seen or near(q))
+# what position2d_node did, judged by causality, not by when this probe saw it: it republishes
+# every pose it receives, in order, so each position is a pose turtlesim published. This probe
+# receives those poses in the same order but may miss some (turtlesim's publisher queue is 1 on
+# a loaded machine) or get them later than the positions. Positions are compared up to the
+# last one whose pose this probe received itself (exact): every earlier position came from a
+# pose published no later, which this probe has therefore received or missed for good. A
+# missed pose lies on the turtle's path between the two received around it: on the chord of
+# that piece of path, within half its length (an arc's sagitta is never longer) + 2 cm.
+end = time.time() + 10      # the poses of the last positions, if they are late
+while time.time() < end and not rospy.is_shutdown():
+    seen = set((p[0], p[1]) for p in poses)
+    if positions and (positions[-1][0], positions[-1][1]) in seen:
+        break
+    time.sleep(0.05)
+last = max([i for i, q in enumerate(positions) if (q[0], q[1]) in seen] or [-1])
+compared = [q for q in positions[:last + 1] if q[2] >= 5]
+path = [(p[0], p[1]) for p in poses]
+def on_path(q):
+    for (x0, y0), (x1, y1) in zip(path, path[1:]):
+        dx, dy = x1 - x0, y1 - y0
+        ln2 = dx * dx + dy * dy
+        t = 0.0 if ln2 == 0 else max(0.0, min(1.0, ((q[0] - x0) * dx + (q[1] - y0) * dy) / ln2))
+        d = ((q[0] - x0 - t * dx) ** 2 + (q[1] - y0 - t * dy) ** 2) ** 0.5
+        if d <= 0.02 + 0.5 * ln2 ** 0.5:
+            return True
+    return len(path) == 1 and abs(q[0] - path[0][0]) < 0.02 and abs(q[1] - path[0][1]) < 0.02
+matched = sum(1 for q in compared if (q[0], q[1]) in seen or on_path(q))
 exact = sum(1 for q in compared if (q[0], q[1]) in seen)
 print(json.dumps({'poses': len(poses), 'positions': len(positions), 'matched': matched, 'exact': exact,
        'compared': len(compared),
@@ -196,7 +215,7 @@ def test_my_setup_launch(workspace, roscore, xvfb, tmp_path):
         assert S.sh(['rostopic', 'type', '/position2d'], env).strip() == PKG + '/Position2d'
         seen = _probe(env, '/turtle1/pose', '/position2d', 300, motion=True)   # >= 5 s at 62.5 Hz
         assert seen['positions'] >= 300 and seen['poses'] >= 300, seen
-        assert seen['matched'] >= seen['compared'] - 2, seen     # position2d carries pose x, y
+        assert seen['matched'] == seen['compared'] >= 200, seen  # position2d carries pose x, y
         assert seen['exact'] >= seen['compared'] // 2, seen      # (most of them seen exactly)
         assert seen['straight'] > 0 and seen['turning'] > 0, seen  # both branches of the law
         assert seen['turn_x_ok'], seen
@@ -230,7 +249,7 @@ def test_two_controllers_in_namespaces(workspace, roscore, xvfb, tmp_path):
         assert '/turtle1/pose' not in topics and '/position2d' not in topics
         for ns, speed in (('/ns1', 2.0), ('/ns2', 1.0)):     # ns2 sets ~speed 1.0
             seen = _probe(env, ns + '/turtle1/pose', ns + '/position2d', 100)
-            assert seen['matched'] >= seen['compared'] - 2 and seen['positions'] >= 100, (ns, seen)
+            assert seen['matched'] == seen['compared'] >= 50 and seen['positions'] >= 100, (ns, seen)
             first = S.echo_once(ns + '/turtle1/pose', env)
             moved = wait_for(lambda: _moved(S.echo_once(ns + '/turtle1/pose', env), first, 0.5),
                              60, 0.2, 'the %s turtle to move' % ns)

@@ -54,7 +54,7 @@ def read_until(fd, text, timeout=10.0):
 
 def test_teleop_keys_drive_turtle(roscore, tmp_path):
     env = headless(roscore.env)
-    subprocess.run(['rosparam', 'set', '/scale_angular', '1.5'], env=env, check=True, timeout=15)
+    subprocess.run(['rosparam', 'set', '/scale_angular', '1.5'], env=env, check=True, timeout=120)
     sim = Proc(['rosrun', 'turtlesim', 'turtlesim_node'], env=env, log=str(tmp_path / 'sim.log'))
     echo_log = str(tmp_path / 'cmd_vel.csv')
     echo = Proc(['rostopic', 'echo', '-p', '/turtle1/cmd_vel'], env=env, log=echo_log)

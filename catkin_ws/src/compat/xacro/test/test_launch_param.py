@@ -10,7 +10,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 
 def _get(env, name):
     r = subprocess.run(['rosparam', 'get', name], capture_output=True, text=True, env=env,
-                       timeout=20)
+                       timeout=120)
     return r.stdout if r.returncode == 0 else None
 
 

@@ -35,7 +35,7 @@ def write_world(tmp_path, extra='', name='w.world'):
 
 def sim(roscore, world, tmp_path, *args):
     subprocess.run(['rosparam', 'set', '/use_sim_time', 'true'], env=roscore.env, check=True,
-                   timeout=15)
+                   timeout=120)
     return Proc(['rosrun', 'ode_sim', 'sim_node', world] + list(args), env=roscore.env,
                 log=str(tmp_path / 'sim.log'))
 
