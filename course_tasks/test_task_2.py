@@ -309,7 +309,9 @@ def test_mimic_launch(workspace, roscore, xvfb, tmp_path):
             off, heading = _off_arc(pose, start, 1.5 / 0.9)
             assert off < 0.3, '%s is %.2f m off the arc driven from %s: %s' % (who, off, start, pose)
             assert heading < 0.3, '%s heads %.2f rad off the arc: %s' % (who, heading, pose)
-        assert math.hypot(b['x'] - start['x'], b['y'] - start['y']) > 1.5, (b, start)
+        # (how far turtle 2 went was checked while it drove: a chord of the arc longer than 1.5 m;
+        # the chord at the stop says nothing — a loaded machine stops the drive late, and one lap
+        # of the circle takes 7 s)
     finally:
         S.stop_all(drive, lp)
 

@@ -4,6 +4,8 @@ prints the graph model (nodes only, then nodes/topics) and where the items are o
 waits for the test's screenshot (flag file argv[1])."""
 import sys
 
+from rqt_graph import graph_model
+from rqt_graph.graph_model import NODE_TOPIC
 from rqt_gui.testing import emit, file_exists, run, running_instance
 
 flag = sys.argv.pop(1)
@@ -28,9 +30,12 @@ def scenario(main, step):
             w.refresh()
         m = w.model
         # rospy_tutorials' talker and listener are anonymous: /talker_<pid>_<stamp>
-        # and connected: the edge comes from the nodes' getBusInfo, once the subscriber connected
+        # and connected: the edges come from each node's getBusInfo, asked at most every 5 s per
+        # node — the listener's answer gives the node-to-node edge, the talker's the talker ->
+        # /chatter edge of the Nodes/Topics view; wait until both answered after the connection
         if m is None or not all(any(n.startswith(p) for n in m.nodes) for p in ('/talker', '/listener')) \
-                or not any(e[2] == '/chatter' for e in m.edges):
+                or not any(e[2] == '/chatter' for e in m.edges) \
+                or '/chatter' not in graph_model.build(w._snapshot, dict(w.options(), graph_type=NODE_TOPIC)).topics:
             return False
         emit(mode='node_node', nodes=m.nodes, edges=[list(e) for e in m.edges],
              title=main.main_window.windowTitle())
