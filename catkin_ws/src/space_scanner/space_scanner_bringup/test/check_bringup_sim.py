@@ -73,12 +73,12 @@ class BringupSim(unittest.TestCase):
         tf2_ros.TransformListener(buf)
         wait(lambda: buf.can_transform('map', 'base_link', rospy.Time(0)), 'map -> base_link')
 
-        out = os.path.join(tempfile.mkdtemp(prefix='bringup_map_'), 'mymap')
-        r = subprocess.run(['rosrun', 'map_server', 'map_saver', '-f', out], capture_output=True,
-                           text=True, timeout=120)
-        self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
-        self.assertTrue(os.path.exists(out + '.pgm') and os.path.exists(out + '.yaml'),
-                        os.listdir(os.path.dirname(out)))
+        with tempfile.TemporaryDirectory(prefix='bringup_map_') as tmp:
+            out = os.path.join(tmp, 'mymap')
+            r = subprocess.run(['rosrun', 'map_server', 'map_saver', '-f', out], capture_output=True,
+                               text=True, timeout=120)
+            self.assertEqual(r.returncode, 0, r.stdout + r.stderr)
+            self.assertTrue(os.path.exists(out + '.pgm') and os.path.exists(out + '.yaml'), os.listdir(tmp))
 
 
 if __name__ == '__main__':
