@@ -4,8 +4,6 @@ prints the graph model (nodes only, then nodes/topics) and where the items are o
 waits for the test's screenshot (flag file argv[1])."""
 import sys
 
-from rqt_graph import graph_model
-from rqt_graph.graph_model import NODE_TOPIC
 from rqt_gui.testing import emit, file_exists, run, running_instance
 
 flag = sys.argv.pop(1)
@@ -30,12 +28,9 @@ def scenario(main, step):
             w.refresh()
         m = w.model
         # rospy_tutorials' talker and listener are anonymous: /talker_<pid>_<stamp>
-        # and connected: the edges come from each node's getBusInfo, asked at most every 5 s per
-        # node — the listener's answer gives the node-to-node edge, the talker's the talker ->
-        # /chatter edge of the Nodes/Topics view; wait until both answered after the connection
+        # and connected: the edge comes from the listener's getBusInfo, once it connected
         if m is None or not all(any(n.startswith(p) for n in m.nodes) for p in ('/talker', '/listener')) \
-                or not any(e[2] == '/chatter' for e in m.edges) \
-                or '/chatter' not in graph_model.build(w._snapshot, dict(w.options(), graph_type=NODE_TOPIC)).topics:
+                or not any(e[2] == '/chatter' for e in m.edges):
             return False
         emit(mode='node_node', nodes=m.nodes, edges=[list(e) for e in m.edges],
              title=main.main_window.windowTitle())
@@ -44,6 +39,13 @@ def scenario(main, step):
         return False
     if phase['n'] == 1:
         m = w.model
+        # the talker -> /chatter edge comes from the talker's own getBusInfo (asked at most every
+        # 5 s per node): until it answered after the connection, /chatter has one edge and the
+        # default "hide leaf topics" hides it, as in the original; refresh as a user would
+        if '/chatter' not in m.topics:
+            if step % 5 == 0:
+                w.refresh()
+            return False
         view = w.graphics_view
         emit(mode=m.graph_type, nodes=m.nodes, topics=m.topics, edges=[list(e[:2]) for e in m.edges],
              rects={k: screen_rect(view, it) for k, it in w.node_items.items()},
