@@ -100,7 +100,7 @@ class Plugin:
 @dataclass
 class Sensor:
     name: str
-    type: str                       # 'ray' | 'gpu_ray' | 'camera' | 'depth' | 'imu'
+    type: str                       # 'ray' | 'gpu_ray' | 'camera' | 'depth' | 'imu' | 'contact'
     link: str                       # link it is attached to (after lumping)
     pose: Pose = field(default_factory=Pose)   # relative to that link
     update_rate: float = 0.0        # Hz, 0 = every step
@@ -111,6 +111,7 @@ class Sensor:
     #      v_max_angle, range_min range_max range_resolution, noise_mean noise_stddev
     # camera/depth: horizontal_fov width height format near far noise_mean noise_stddev
     # imu: angular_velocity/linear_acceleration noise (noise_stddev)
+    # contact: collisions (names of the link's collisions it reports)
     params: Dict[str, object] = field(default_factory=dict)
     plugins: List[Plugin] = field(default_factory=list)
 

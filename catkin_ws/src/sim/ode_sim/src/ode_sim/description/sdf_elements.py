@@ -248,6 +248,16 @@ def parse_sensor(ctx, el, link_name):
         p['noise_stddev'] = av_std
         if not sensor.topic:
             sensor.topic = text_of(imu, 'topic', '') or ''
+    elif stype == 'contact':
+        contact = el.find('contact')
+        names = [(c.text or '').strip() for c in (contact.findall('collision')
+                                                  if contact is not None else [])]
+        if not names or not all(names):
+            raise ctx.err(el, '<sensor name=%r type="contact"> needs <contact><collision>NAME'
+                              '</collision></contact> naming collisions of its link' % name)
+        p['collisions'] = names
+        if not sensor.topic:
+            sensor.topic = text_of(contact, 'topic', '') or ''
     else:
         ctx.warn(el, '<sensor name=%r type=%r>: sensor type not simulated, kept without data'
                  % (name, stype))

@@ -119,6 +119,7 @@ class CompiledLoop:
         check_layout()
         self.pw = pw
         self.core = _core.Stepper(ptr(pw.world), ptr(pw.static_space))
+        self._geoms = {}            # ODE id -> geom (contact records name geoms by id)
         self.joints_dirty = True
         self.tracked_dirty = True
         self.sync_step()
@@ -130,9 +131,21 @@ class CompiledLoop:
     def add_geom(self, geom, surf):
         mu1, mu2, kp, kd, fdir, bounce, bounce_vel, body = surf
         self.core.add_geom(ptr(geom), ptr(body), mu1, mu2, kp, kd, fdir, bounce, bounce_vel)
+        self._geoms[ptr(geom)] = geom
 
     def remove_geom(self, geom):
         self.core.remove_geom(ptr(geom))
+        self._geoms.pop(ptr(geom), None)
+
+    def set_watched(self, geoms):
+        self.core.set_watched([ptr(g) for g in geoms])
+
+    def take_contacts(self):
+        """[(step, watched geom, other geom, 13 values)] recorded since the last call."""
+        steps, ids, vals = self.core.take_contacts()
+        geoms = self._geoms
+        return [(int(s), geoms.get(int(a)), geoms.get(int(b)), v)
+                for s, (a, b), v in zip(steps, ids, vals)]
 
     def add_space(self, space, bodies, self_collide):
         self.core.add_space(ptr(space), [ptr(b) for b in bodies], bool(self_collide))

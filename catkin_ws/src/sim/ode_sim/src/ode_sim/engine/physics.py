@@ -25,6 +25,7 @@ from ode_sim.description.transforms import Pose, quat_to_matrix
 from ode_sim.engine.bodies import (ENV, P_HI_STOP, P_LO_STOP, SimJoint, SimLink, SimModel,
                                    forward_kinematics, keep_alive, ode_q, welded_to_world)
 from ode_sim.engine.compiled import CompiledLoop, TriMeshGeom
+from ode_sim.engine.contacts import ContactWatch
 from ode_sim.engine.pyloop import PythonLoop
 from ode_sim.engine.scene import ShapeInstance
 
@@ -79,6 +80,8 @@ class PhysicsWorld:
         self.use_step = physics.solver_type == 'world'
         self.core = core
         self._loop = CompiledLoop(self) if core == 'compiled' else PythonLoop(self)
+        #: contact sensors: contacts.watch(key, geoms), contacts.take(key) (engine/contacts.py)
+        self.contacts = ContactWatch(self._loop, self.time_at_step)
 
     # ----------------------------------------------------------------- building
     def add_model(self, desc):
@@ -262,6 +265,7 @@ class PhysicsWorld:
         for sj in m.joints.values():
             self._joints.remove(sj)
         self._refresh_active()
+        self.contacts.forget(g for link in m.links.values() for g in link.geoms)
         for link in m.links.values():
             for g in link.geoms:
                 self._surf.pop(g, None)
@@ -314,6 +318,10 @@ class PhysicsWorld:
     def time_after(self, k):
         """The simulated time after k more steps of the current dt (as step() will count it)."""
         return self._t0 + (self.steps + k - self._steps0) * self.dt
+
+    def time_at_step(self, k):
+        """The simulated time after step number k (k <= steps, of the current dt)."""
+        return self._t0 + (k - self._steps0) * self.dt
 
     def step(self, n=1):
         """n physics steps of dt (one call into the loop)."""

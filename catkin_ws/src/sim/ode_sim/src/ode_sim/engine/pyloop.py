@@ -13,6 +13,11 @@ class PythonLoop:
 
     def __init__(self, pw):
         self.pw = pw
+        self._watched = set()       # contact sensors' geoms
+        self._pending = []          # this step's watched contacts:
+                                    # (geom, other, contact, joint, normal sign)
+        self._records = []          # finished steps' (step, geom, other, 13 values)
+        self._record_steps = 0      # steps with records kept (at most contacts.MAX_STEPS)
 
     # the compiled loop mirrors these changes; here the lists of pw are the state
     def sync_step(self):
@@ -29,6 +34,57 @@ class PythonLoop:
 
     def remove_space(self, space):
         pass
+
+    def set_watched(self, geoms):
+        self._watched = set(geoms)
+        if not self._watched:
+            self._records, self._record_steps = [], 0
+
+    def take_contacts(self):
+        out, self._records, self._record_steps = self._records, [], 0
+        return out
+
+    def _watch(self, g1, g2, contact, joint):
+        for mine, other, sign in ((g1, g2, 1.0), (g2, g1, -1.0)):
+            if mine in self._watched:
+                joint.setFeedback(True)
+                self._pending.append((mine, other, contact, joint, sign))
+
+    def _finish_step_contacts(self, step):
+        from ode_sim.engine.contacts import MAX_STEPS
+        recs = []
+        feedback = {}
+        zero = ((0.0, 0.0, 0.0),) * 4
+        for _m, _o, _c, joint, _s in self._pending:
+            if id(joint) not in feedback:
+                # ODE leaves the feedback of a joint between sleeping bodies unwritten (and
+                # PyODE's buffer uninitialised): no force, as the compiled core reports
+                awake = any(b is not None and b.isEnabled()
+                            for b in (joint.getBody(0), joint.getBody(1)))
+                feedback[id(joint)] = joint.getFeedback() if awake else zero
+        for _m, _o, _c, joint, _s in self._pending:
+            joint.setFeedback(False)    # PyODE would touch the joint after the group frees it
+        for mine, other, contact, joint, sign in self._pending:
+            pos, normal, depth, _g1, _g2 = contact.getContactGeomParams()
+            f1, t1, f2, t2 = feedback[id(joint)]
+            body = self.pw._surf[mine][7] if mine in self.pw._surf else None
+            first = joint.getBody(0) or joint.getBody(1)   # ODE moves a lone body first
+            if body is not None and first is body:
+                force, torque = f1, t1
+            elif body is not None:
+                force, torque = f2, t2
+            else:                       # static: the reaction, no torque of its own
+                force, torque = tuple(-v for v in f1), (0.0, 0.0, 0.0)
+            recs.append((step, mine, other, tuple(pos) + tuple(sign * v for v in normal)
+                         + (depth,) + tuple(force) + tuple(torque)))
+        self._pending = []
+        if recs:
+            self._records.extend(recs)
+            self._record_steps += 1
+            if self._record_steps > MAX_STEPS:
+                first = sorted({r[0] for r in self._records})[-MAX_STEPS]
+                self._records = [r for r in self._records if r[0] >= first]
+                self._record_steps = MAX_STEPS
 
     def near(self, _arg, g1, g2):
         pw = self.pw
@@ -77,7 +133,10 @@ class PythonLoop:
             if bounce > 0:
                 c.setBounce(bounce)
                 c.setBounceVel(min(s1[6], s2[6]))
-            ode.ContactJoint(world, group, c).attach(b1, b2)
+            joint = ode.ContactJoint(world, group, c)
+            joint.attach(b1, b2)
+            if self._watched and (g1 in self._watched or g2 in self._watched):
+                self._watch(g1, g2, c, joint)
         pw._contacts += 1
 
     def sort_sleepers(self):
@@ -129,6 +188,8 @@ class PythonLoop:
                 pw.world.step(dt)
             else:
                 pw.world.quickStep(dt)
+            if self._pending:
+                self._finish_step_contacts(pw.steps + k + 1)
             pw.contact_group.empty()
             for link in pw._tracked:
                 v = np.array(link.body.getLinearVel())

@@ -91,3 +91,47 @@ def fill_laserscan(msg, model, ranges, intensities, stamp=None, frame=None):
     msg.ranges = np.asarray(ranges, dtype=float).tolist()
     msg.intensities = np.asarray(intensities, dtype=float).tolist()
     return msg
+
+
+def ros_time_text(t):
+    """ros::Time as roscpp streams it: seconds, a dot, nine digits of nanoseconds."""
+    ns = int(round(t * 1e9))
+    return '%d.%09d' % (ns // 1000000000, ns % 1000000000)
+
+
+def contacts_state(points, stamp, frame):
+    """gazebo_msgs/ContactsState from engine ContactPoints (engine/contacts.py) as
+    gazebo_ros_bumper builds it: one ContactState per touching pair of collisions and step
+    (collision1 = the sensor's), its points' wrenches on collision1's body, positions and
+    normals in the world frame, depths, the summed total_wrench, and the original's info line."""
+    from gazebo_msgs.msg import ContactsState, ContactState
+    from geometry_msgs.msg import Wrench
+    groups = []
+    for p in points:
+        if not groups or (groups[-1][0].time, groups[-1][0].mine, groups[-1][0].other) != \
+                (p.time, p.mine, p.other):
+            groups.append([])
+        groups[-1].append(p)
+    msg = ContactsState()
+    msg.header.stamp = stamp
+    msg.header.frame_id = frame
+    for i, g in enumerate(groups):
+        s = ContactState()
+        s.collision1_name, s.collision2_name = g[0].mine, g[0].other
+        s.info = ('Debug:  i:(%d/%d)     my geom:%s   other geom:%s         time:%s\n'
+                  % (i, len(groups), s.collision1_name, s.collision2_name,
+                     ros_time_text(g[0].time)))
+        total = np.zeros(6)
+        for p in g:
+            w = Wrench()
+            fill_vector(w.force, p.force)
+            fill_vector(w.torque, p.torque)
+            s.wrenches.append(w)
+            total += np.r_[p.force, p.torque]
+            s.contact_positions.append(Vector3(*(float(v) for v in p.position)))
+            s.contact_normals.append(Vector3(*(float(v) for v in p.normal)))
+            s.depths.append(float(p.depth))
+        fill_vector(s.total_wrench.force, total[:3])
+        fill_vector(s.total_wrench.torque, total[3:])
+        msg.states.append(s)
+    return msg

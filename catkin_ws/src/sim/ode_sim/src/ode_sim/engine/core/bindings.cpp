@@ -204,6 +204,36 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("n"), py::arg("steps"))
       .def("contacts", &Stepper::contacts)
+      .def("set_watched",
+           [](Stepper& s, const std::vector<uintptr_t>& ids) {
+             std::vector<dGeomID> g;
+             for (auto v : ids) g.push_back(as<dGeomID>(v));
+             s.setWatched(g);
+           })
+      .def("take_contacts",
+           [](Stepper& s) {
+             // (steps int64 (N,), geom ids uint64 (N, 2): mine, other, values (N, 13):
+             // position, normal, depth, force, torque)
+             std::vector<ode_sim::ContactRecord> recs = s.takeContacts();
+             const auto n = static_cast<py::ssize_t>(recs.size());
+             py::array_t<int64_t> steps(n);
+             py::array_t<uint64_t> ids({n, py::ssize_t{2}});
+             py::array_t<double> vals({n, py::ssize_t{13}});
+             auto* st = steps.mutable_data();
+             auto* id = ids.mutable_data();
+             auto* v = vals.mutable_data();
+             for (const auto& r : recs) {
+               *st++ = r.step;
+               *id++ = num(r.mine);
+               *id++ = num(r.other);
+               for (double x : r.pos) *v++ = x;
+               for (double x : r.normal) *v++ = x;
+               *v++ = r.depth;
+               for (double x : r.force) *v++ = x;
+               for (double x : r.torque) *v++ = x;
+             }
+             return py::make_tuple(steps, ids, vals);
+           })
       .def("read_bodies", [](const Stepper&, const std::vector<uintptr_t>& ids) {
         // one row per body: position (3), quaternion x y z w (4), linear (3), angular (3) velocity
         py::array_t<double> out({static_cast<py::ssize_t>(ids.size()), py::ssize_t{13}});

@@ -130,8 +130,79 @@ void Stepper::near(dGeomID g1, dGeomID g2) {
     }
     dJointID j = dJointCreateContact(world_, group_, &c);
     dJointAttach(j, b1, b2);
+    if (!watched_.empty()) {
+      const bool w1 = watched_.count(g1) > 0, w2 = watched_.count(g2) > 0;
+      if (w1 || w2) {
+        feedback_.emplace_back();
+        dJointSetFeedback(j, &feedback_.back());
+        if (w1) watch(g1, g2, buf_[i], true, j);
+        if (w2) watch(g2, g1, buf_[i], false, j);
+      }
+    }
   }
   ++contacts_;
+}
+
+void Stepper::setWatched(const std::vector<dGeomID>& geoms) {
+  watched_ = std::unordered_set<dGeomID>(geoms.begin(), geoms.end());
+  if (watched_.empty()) steps_with_contacts_.clear();
+}
+
+void Stepper::watch(dGeomID mine, dGeomID other, const dContactGeom& g, bool mine_first,
+                    dJointID j) {
+  Pending p{};
+  p.rec.mine = mine;
+  p.rec.other = other;
+  const double sign = mine_first ? 1.0 : -1.0;  // ODE's normal is for (g1, g2)
+  for (int k = 0; k < 3; ++k) {
+    p.rec.pos[k] = g.pos[k];
+    p.rec.normal[k] = sign * g.normal[k];
+  }
+  p.rec.depth = g.depth;
+  p.body = dGeomGetBody(mine);
+  p.joint = j;
+  p.fb = feedback_.size() - 1;  // the joint's feedback, allocated by near()
+  pending_.push_back(p);
+}
+
+void Stepper::finishStepContacts(int64_t step) {
+  std::vector<ContactRecord> recs;
+  recs.reserve(pending_.size());
+  for (Pending& p : pending_) {
+    const dJointFeedback& f = feedback_[p.fb];
+    ContactRecord r = p.rec;
+    r.step = step;
+    // ODE fills f1/t1 for the joint's first body: after dJointAttach(j, 0, b) that is b
+    const dReal *force = nullptr, *torque = nullptr;
+    double sign = 1.0;
+    if (p.body && dJointGetBody(p.joint, 0) == p.body) {
+      force = f.f1;
+      torque = f.t1;
+    } else if (p.body) {
+      force = f.f2;
+      torque = f.t2;
+    } else {  // static: the reaction to the force on the other body, no torque of its own
+      force = f.f1;
+      sign = -1.0;
+    }
+    for (int k = 0; k < 3; ++k) {
+      r.force[k] = sign * force[k];
+      r.torque[k] = torque ? torque[k] : 0.0;
+    }
+    recs.push_back(r);
+  }
+  pending_.clear();
+  feedback_.clear();
+  if (recs.empty()) return;
+  steps_with_contacts_.push_back(std::move(recs));
+  while (steps_with_contacts_.size() > kMaxContactSteps) steps_with_contacts_.pop_front();
+}
+
+std::vector<ContactRecord> Stepper::takeContacts() {
+  std::vector<ContactRecord> out;
+  for (auto& s : steps_with_contacts_) out.insert(out.end(), s.begin(), s.end());
+  steps_with_contacts_.clear();
+  return out;
 }
 
 void Stepper::preStep(ActiveJoint& j) {
@@ -210,6 +281,7 @@ void Stepper::step(int n, int64_t steps) {
       dWorldStep(world_, dt_);
     else
       dWorldQuickStep(world_, dt_);
+    if (!pending_.empty()) finishStepContacts(steps + 1);
     dJointGroupEmpty(group_);
     for (size_t i = 0; i < tracked_.size(); ++i) {
       const dReal* v = dBodyGetLinearVel(tracked_[i]);

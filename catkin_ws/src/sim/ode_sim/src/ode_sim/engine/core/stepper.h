@@ -8,7 +8,9 @@
 #include <ode/ode.h>
 
 #include <cstdint>
+#include <deque>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 namespace ode_sim {
@@ -33,6 +35,16 @@ struct ActiveJoint {
   double applied;      // effort added this step (out)
 };
 
+// One contact point of a watched geom (a contact sensor's collision) in one step: `mine` is the
+// watched geom, the normal points so that moving `mine` along it by `depth` separates the two
+// (ODE's convention with `mine` as the first geom), force and torque act on mine's body (torque
+// about its centre of mass; for a static watched geom, minus the force on the other body).
+struct ContactRecord {
+  int64_t step;  // the step count after the step that made the contact
+  dGeomID mine, other;
+  double pos[3], normal[3], depth, force[3], torque[3];
+};
+
 class Stepper {
  public:
   Stepper(dWorldID world, dSpaceID static_space);
@@ -54,6 +66,12 @@ class Stepper {
   /// n steps; `steps` is the step count before them (sleepers are sorted every 100 steps)
   void step(int n, int64_t steps);
   int64_t contacts() const { return contacts_; }
+  /// geoms whose contacts are recorded (contact sensors); an empty set records nothing
+  void setWatched(const std::vector<dGeomID>& geoms);
+  /// the records of the steps since the last call (at most kMaxContactSteps steps with
+  /// contacts, the oldest dropped first, as Gazebo's contact sensor keeps 100 messages)
+  std::vector<ContactRecord> takeContacts();
+  static constexpr size_t kMaxContactSteps = 100;
 
   static void nearCallback(void* data, dGeomID g1, dGeomID g2);
 
@@ -63,6 +81,8 @@ class Stepper {
   void sortSleepers();
   bool anyEnabled(dSpaceID sp) const;
   void moveTo(std::vector<dSpaceID>& from, std::vector<dSpaceID>& to, dSpaceID sp);
+  void watch(dGeomID mine, dGeomID other, const dContactGeom& g, bool mine_first, dJointID j);
+  void finishStepContacts(int64_t step);
 
   dWorldID world_;
   dSpaceID static_;
@@ -78,6 +98,18 @@ class Stepper {
   std::vector<dBodyID> tracked_;
   std::vector<double> prev_vel_, accel_;
   std::vector<dContactGeom> buf_;
+  // contact sensors: the watched geoms, this step's points (their joints' feedback lives in
+  // feedback_, whose elements keep their addresses), and the finished steps' records
+  struct Pending {
+    ContactRecord rec;
+    dBodyID body;     // mine's body (nullptr: static)
+    dJointID joint;
+    size_t fb;        // index into feedback_
+  };
+  std::unordered_set<dGeomID> watched_;
+  std::vector<Pending> pending_;
+  std::deque<dJointFeedback> feedback_;  // one per watched contact joint of this step
+  std::deque<std::vector<ContactRecord>> steps_with_contacts_;
 };
 
 }  // namespace ode_sim

@@ -15,6 +15,7 @@ MODULES = {
     'camera': ['libgazebo_ros_camera.so', 'libgazebo_ros_openni_kinect.so',
                'libgazebo_ros_depth_camera.so'],
     'control': ['libgazebo_ros_control.so'],
+    'contact': ['libgazebo_ros_bumper.so'],
 }
 
 
