@@ -138,7 +138,7 @@ def test_no_sandbox_here_grades_as_self_check(monkeypatch, tmp_path, capsys):
 
 
 FIND_NODE = r'''
-import os, subprocess, sys
+import os, subprocess, sys, time
 from grading import sandbox
 box = sandbox.Sandbox.from_json(sys.argv[1])
 p = subprocess.Popen(box.wrap(['bash', '-c', 'sleep 60 & echo $!; sleep 1 & sleep 1 & wait']),
@@ -150,8 +150,13 @@ try:
     pid = sandbox.host_pid(inner)
     if pid is None:
         sys.exit('host_pid(%d) found no process in the sandbox' % inner)
-    with open('/proc/%d/cmdline' % pid, 'rb') as f:
-        argv = f.read().split(b'\0')[:2]
+    # `echo $!` may run before the forked child has exec'd sleep: its cmdline is bash's until then
+    for _ in range(100):
+        with open('/proc/%d/cmdline' % pid, 'rb') as f:
+            argv = f.read().split(b'\0')[:2]
+        if argv == [b'sleep', b'60']:
+            break
+        time.sleep(0.05)
     print(init is not None, inner, pid != inner, argv == [b'sleep', b'60'], sandbox.count_procs(init))
 finally:
     p.kill()
