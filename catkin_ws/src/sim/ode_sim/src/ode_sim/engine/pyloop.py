@@ -1,8 +1,12 @@
 """The step loop on PyODE: collision with a Python near callback, contact joints, (quick)step,
 sleeping models. The reference the compiled core (compiled.py, core/) reproduces operation for
 operation; PhysicsWorld(core='python') uses it."""
+from collections import deque
+
 import numpy as np
 import ode
+
+from ode_sim.engine.contacts import MAX_STEPS
 
 
 class PythonLoop:
@@ -15,9 +19,9 @@ class PythonLoop:
         self.pw = pw
         self._watched = set()       # contact sensors' geoms
         self._pending = []          # this step's watched contacts:
-                                    # (geom, other, contact, joint, normal sign)
-        self._records = []          # finished steps' (step, geom, other, 13 values)
-        self._record_steps = 0      # steps with records kept (at most contacts.MAX_STEPS)
+                                    # (geom, other, contact, joint, normal sign, force slot)
+        # finished steps' records, one list per step with contacts (the core's bound)
+        self._steps = deque(maxlen=MAX_STEPS)
 
     # the compiled loop mirrors these changes; here the lists of pw are the state
     def sync_step(self):
@@ -38,53 +42,49 @@ class PythonLoop:
     def set_watched(self, geoms):
         self._watched = set(geoms)
         if not self._watched:
-            self._records, self._record_steps = [], 0
+            self._steps.clear()
 
     def take_contacts(self):
-        out, self._records, self._record_steps = self._records, [], 0
+        out = [r for recs in self._steps for r in recs]
+        self._steps.clear()
         return out
 
-    def _watch(self, g1, g2, contact, joint):
-        for mine, other, sign in ((g1, g2, 1.0), (g2, g1, -1.0)):
+    def _watch(self, g1, g2, b1, b2, contact, joint):
+        """Record a watched geom's contact joint. ODE puts a lone body first (attach(None, b)
+        makes b body 0), so the watched geom's force is feedback slot 0 when its body is the
+        joint's first body, slot 1 when it is the other one, and for a static watched geom the
+        reaction to slot 0 (None)."""
+        first = b1 if b1 is not None else b2
+        for mine, other, body, sign in ((g1, g2, b1, 1.0), (g2, g1, b2, -1.0)):
             if mine in self._watched:
                 joint.setFeedback(True)
-                self._pending.append((mine, other, contact, joint, sign))
+                slot = None if body is None else 0 if body is first else 1
+                self._pending.append((mine, other, contact, joint, sign, slot))
 
     def _finish_step_contacts(self, step):
-        from ode_sim.engine.contacts import MAX_STEPS
-        recs = []
         feedback = {}
         zero = ((0.0, 0.0, 0.0),) * 4
-        for _m, _o, _c, joint, _s in self._pending:
+        for *_, joint, _s, _slot in self._pending:
             if id(joint) not in feedback:
                 # ODE leaves the feedback of a joint between sleeping bodies unwritten (and
                 # PyODE's buffer uninitialised): no force, as the compiled core reports
                 awake = any(b is not None and b.isEnabled()
                             for b in (joint.getBody(0), joint.getBody(1)))
                 feedback[id(joint)] = joint.getFeedback() if awake else zero
-        for _m, _o, _c, joint, _s in self._pending:
-            joint.setFeedback(False)    # PyODE would touch the joint after the group frees it
-        for mine, other, contact, joint, sign in self._pending:
+                joint.setFeedback(False)    # PyODE would touch it after the group frees it
+        recs = []
+        for mine, other, contact, joint, sign, slot in self._pending:
             pos, normal, depth, _g1, _g2 = contact.getContactGeomParams()
             f1, t1, f2, t2 = feedback[id(joint)]
-            body = self.pw._surf[mine][7] if mine in self.pw._surf else None
-            first = joint.getBody(0) or joint.getBody(1)   # ODE moves a lone body first
-            if body is not None and first is body:
-                force, torque = f1, t1
-            elif body is not None:
-                force, torque = f2, t2
-            else:                       # static: the reaction, no torque of its own
+            if slot is None:            # static: the reaction, no torque of its own
                 force, torque = tuple(-v for v in f1), (0.0, 0.0, 0.0)
+            else:
+                force, torque = (f1, t1) if slot == 0 else (f2, t2)
             recs.append((step, mine, other, tuple(pos) + tuple(sign * v for v in normal)
                          + (depth,) + tuple(force) + tuple(torque)))
         self._pending = []
         if recs:
-            self._records.extend(recs)
-            self._record_steps += 1
-            if self._record_steps > MAX_STEPS:
-                first = sorted({r[0] for r in self._records})[-MAX_STEPS]
-                self._records = [r for r in self._records if r[0] >= first]
-                self._record_steps = MAX_STEPS
+            self._steps.append(recs)
 
     def near(self, _arg, g1, g2):
         pw = self.pw
@@ -136,7 +136,7 @@ class PythonLoop:
             joint = ode.ContactJoint(world, group, c)
             joint.attach(b1, b2)
             if self._watched and (g1 in self._watched or g2 in self._watched):
-                self._watch(g1, g2, c, joint)
+                self._watch(g1, g2, b1, b2, c, joint)
         pw._contacts += 1
 
     def sort_sleepers(self):

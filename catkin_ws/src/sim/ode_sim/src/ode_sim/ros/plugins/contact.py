@@ -25,6 +25,7 @@ from gazebo_msgs.msg import ContactsState
 
 from ode_sim.ros.plugins.base import NO_WORK, Plugin
 from ode_sim.ros.plugins.laser import tf_resolve
+from ode_sim.ros.plugins.rosio import close
 
 
 class BumperPlugin(Plugin):
@@ -87,10 +88,7 @@ class BumperPlugin(Plugin):
 
     def shutdown(self):
         self.ctx.physics.contacts.unwatch(self.key)
-        try:
-            self.pub.unregister()
-        except Exception:  # noqa: BLE001 - shutting down anyway
-            pass
+        close(self.pub)
 
 
 PLUGINS = {
