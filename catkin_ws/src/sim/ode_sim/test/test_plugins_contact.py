@@ -242,8 +242,11 @@ def test_ros_time_text_as_roscpp_streams_it():
     assert ros_time_text(12.3456789) == '12.345678900'
 
 
+# A resting model falls asleep after 10 quiet steps and then, as in Gazebo, collides with the
+# static world no more, so what `rostopic echo` sees would depend on when it subscribes: this
+# crate stays awake (SDF <allow_auto_disable>), as a model whose bumper must keep reporting.
 BOX_WITH_BUMPER = '''
-<model name="crate"><pose>0 0 0.1 0 0 0</pose>
+<model name="crate"><pose>0 0 0.1 0 0 0</pose><allow_auto_disable>false</allow_auto_disable>
   <link name="link">
     <inertial><mass>2</mass><inertia><ixx>0.013</ixx><iyy>0.013</iyy><izz>0.013</izz></inertia></inertial>
     <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>

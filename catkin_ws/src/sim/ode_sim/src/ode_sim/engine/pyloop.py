@@ -9,6 +9,12 @@ import ode
 from ode_sim.engine.contacts import MAX_STEPS
 
 
+def disjoint(a, b):
+    """ODE's AABB overlap test on (minx, maxx, miny, maxy, minz, maxz) boxes."""
+    return (a[0] > b[1] or a[1] < b[0] or a[2] > b[3] or a[3] < b[2] or a[4] > b[5]
+            or a[5] < b[4])
+
+
 class PythonLoop:
     """PhysicsWorld's step loop in Python; keeps its state in the PhysicsWorld `pw`."""
 
@@ -158,6 +164,55 @@ class PythonLoop:
             for b in pw._space_bodies[sp]:
                 b.enable()
 
+    # Broad phase (the core's collideSpaces / readStatic / collideStatic, call for call, so the
+    # pairs reach near() in the same order and ODE's space lists change the same way): ODE's
+    # collide2 of two spaces tests every geom of one against every geom of the other.
+    def _collide_spaces(self, a, b):
+        """ode.collide2(a, b), skipped when the spaces' boxes are disjoint."""
+        box_a, box_b = a.getAABB(), b.getAABB()
+        if a.getNumGeoms() == 0 or b.getNumGeoms() == 0 or disjoint(box_a, box_b):
+            return
+        ode.collide2(a, b, None, self.near)
+
+    @staticmethod
+    def _read_static(static):
+        """[(geom, enabled, box)] of the static space in its list order; None when it holds a
+        space (then _collide_static collides the whole static space)."""
+        out = []
+        for i in range(static.getNumGeoms()):
+            g = static.getGeom(i)
+            if g.isSpace():
+                return None
+            out.append((g, bool(g.isEnabled()), g.getAABB()))
+        return out
+
+    def _collide_static(self, sp, statics):
+        """ode.collide2(sp, static_space) against the static geoms whose box meets sp's only,
+        with ODE's pair order: it walks the space with fewer geoms."""
+        if statics is None:
+            ode.collide2(sp, self.pw.static_space, None, self.near)
+            return
+        nr = sp.getNumGeoms()
+        if nr == 0 or not statics:
+            return
+        box = sp.getAABB()
+        near_static = [s for s in statics if not disjoint(box, s[2])]
+        if not near_static:
+            return
+        near = self.near
+        if nr < len(statics):
+            for i in range(nr):
+                g = sp.getGeom(i)
+                for s, enabled, _ in near_static:
+                    if enabled:
+                        ode.collide2(g, s, None, near)
+        else:
+            for s, _, _ in near_static:
+                for i in range(nr):
+                    g = sp.getGeom(i)
+                    if g.isEnabled():
+                        ode.collide2(g, s, None, near)
+
     def step(self, n):
         pw = self.pw
         dt = pw.dt
@@ -167,20 +222,21 @@ class PythonLoop:
             for sj in pw._active:
                 sj.pre_step(dt)
             awake = pw._awake
+            statics = self._read_static(static) if awake else []
             for i, sp in enumerate(awake):
-                ode.collide2(sp, static, None, near)        # model vs the static world
+                self._collide_static(sp, statics)           # model vs the static world
                 for other in awake[i + 1:]:
-                    ode.collide2(sp, other, None, near)     # models vs each other
+                    self._collide_spaces(sp, other)         # models vs each other
                 for other in pw._dormant:
                     before = pw._contacts
-                    ode.collide2(sp, other, None, near)     # a touch wakes the sleeper
+                    self._collide_spaces(sp, other)         # a touch wakes the sleeper
                     if pw._contacts != before:
                         pw._wake.append(other)
             if pw._wake:
                 for sp in pw._wake:
                     if sp in pw._dormant:
                         self.rouse(sp)
-                        ode.collide2(sp, static, None, near)
+                        self._collide_static(sp, statics)
                 pw._wake = []
             for sp in pw._self_collide:
                 sp.collide(None, near)

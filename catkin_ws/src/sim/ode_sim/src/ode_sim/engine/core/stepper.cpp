@@ -13,6 +13,13 @@ namespace {
 constexpr int kCollideMax = 150;
 // PyODE 1.2's ContactApprox1 (0x3000): the friction pyramid on both directions.
 constexpr int kApprox1 = dContactApprox1_1 | dContactApprox1_2;
+
+// ODE's own AABB overlap test (collideAABBs): boxes are (minx, maxx, miny, maxy, minz, maxz)
+bool disjoint(const dReal* a, const dReal* b) {
+  return a[0] > b[1] || a[1] < b[0] || a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4];
+}
+
+dGeomID asGeom(dSpaceID sp) { return reinterpret_cast<dGeomID>(sp); }
 }  // namespace
 
 Stepper::Stepper(dWorldID world, dSpaceID static_space)
@@ -247,21 +254,71 @@ void Stepper::sortSleepers() {
     if (anyEnabled(sp)) rouse(sp);
 }
 
+void Stepper::collideSpaces(dSpaceID a, dSpaceID b) {
+  dReal ba[6], bb[6];
+  dGeomGetAABB(asGeom(a), ba);
+  dGeomGetAABB(asGeom(b), bb);
+  if (dSpaceGetNumGeoms(a) == 0 || dSpaceGetNumGeoms(b) == 0 || disjoint(ba, bb)) return;
+  dSpaceCollide2(asGeom(a), asGeom(b), this, &Stepper::nearCallback);
+}
+
+void Stepper::readStatic() {
+  const int ns = dSpaceGetNumGeoms(static_);
+  static_geoms_.resize(ns);
+  static_nested_ = false;
+  for (int i = 0; i < ns; ++i) {
+    StaticGeom& s = static_geoms_[i];
+    s.id = dSpaceGetGeom(static_, i);  // the space's list order, as ODE's collide2 walks it
+    if (dGeomIsSpace(s.id)) static_nested_ = true;
+    s.enabled = dGeomIsEnabled(s.id) != 0;
+    dGeomGetAABB(s.id, s.box);
+  }
+}
+
+void Stepper::collideStatic(dSpaceID sp) {
+  const int nr = dSpaceGetNumGeoms(sp);
+  const int ns = static_cast<int>(static_geoms_.size());
+  if (static_nested_) {
+    dSpaceCollide2(asGeom(sp), asGeom(static_), this, &Stepper::nearCallback);
+    return;
+  }
+  if (nr == 0 || ns == 0) return;
+  dReal box[6];
+  dGeomGetAABB(asGeom(sp), box);
+  near_static_.clear();
+  for (const StaticGeom& s : static_geoms_)
+    if (!disjoint(box, s.box)) near_static_.push_back(&s);
+  if (near_static_.empty()) return;
+  // dSpaceCollide2 of two spaces walks the one with fewer geoms and collide2's each of them
+  // into the other, which skips its own disabled geoms; every pair reaches near() as (sp's
+  // geom, static geom). dSpaceCollide2 on two geoms is ODE's collideAABBs on them.
+  if (nr < ns) {
+    for (int i = 0; i < nr; ++i) {
+      dGeomID g = dSpaceGetGeom(sp, i);
+      for (const StaticGeom* s : near_static_)
+        if (s->enabled) dSpaceCollide2(g, s->id, this, &Stepper::nearCallback);
+    }
+  } else {
+    for (const StaticGeom* s : near_static_)
+      for (int i = 0; i < nr; ++i) {
+        dGeomID g = dSpaceGetGeom(sp, i);
+        if (dGeomIsEnabled(g)) dSpaceCollide2(g, s->id, this, &Stepper::nearCallback);
+      }
+  }
+}
+
 void Stepper::step(int n, int64_t steps) {
   ensureThreadData();  // the trimesh collider's caches on the thread that steps
   for (int s = 0; s < n; ++s) {
     for (auto& j : active_) preStep(j);
+    if (!awake_.empty()) readStatic();
     for (size_t i = 0; i < awake_.size(); ++i) {
       dSpaceID sp = awake_[i];
-      dSpaceCollide2(reinterpret_cast<dGeomID>(sp), reinterpret_cast<dGeomID>(static_), this,
-                     &Stepper::nearCallback);
-      for (size_t k = i + 1; k < awake_.size(); ++k)
-        dSpaceCollide2(reinterpret_cast<dGeomID>(sp), reinterpret_cast<dGeomID>(awake_[k]), this,
-                       &Stepper::nearCallback);
+      collideStatic(sp);
+      for (size_t k = i + 1; k < awake_.size(); ++k) collideSpaces(sp, awake_[k]);
       for (dSpaceID other : dormant_) {
         int64_t before = contacts_;
-        dSpaceCollide2(reinterpret_cast<dGeomID>(sp), reinterpret_cast<dGeomID>(other), this,
-                       &Stepper::nearCallback);
+        collideSpaces(sp, other);
         if (contacts_ != before) wake_.push_back(other);
       }
     }
@@ -271,8 +328,7 @@ void Stepper::step(int n, int64_t steps) {
       for (dSpaceID sp : wake) {
         if (std::find(dormant_.begin(), dormant_.end(), sp) != dormant_.end()) {
           rouse(sp);
-          dSpaceCollide2(reinterpret_cast<dGeomID>(sp), reinterpret_cast<dGeomID>(static_), this,
-                         &Stepper::nearCallback);
+          collideStatic(sp);
         }
       }
     }

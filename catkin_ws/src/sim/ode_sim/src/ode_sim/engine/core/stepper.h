@@ -77,6 +77,14 @@ class Stepper {
 
  private:
   void near(dGeomID g1, dGeomID g2);
+  // dSpaceCollide2(a, b) with the same pairs in the same order, skipped when the two spaces'
+  // bounding boxes are disjoint: then no pair of their geoms can pass ODE's AABB test
+  void collideSpaces(dSpaceID a, dSpaceID b);
+  // dSpaceCollide2(sp, static_) with the same pairs in the same order, but only against the
+  // static geoms whose bounding box meets sp's (ODE's collide2 tests every static geom
+  // against every geom of sp); the static boxes are read once per step (readStatic)
+  void collideStatic(dSpaceID sp);
+  void readStatic();
   void preStep(ActiveJoint& j);
   void sortSleepers();
   bool anyEnabled(dSpaceID sp) const;
@@ -98,6 +106,14 @@ class Stepper {
   std::vector<dBodyID> tracked_;
   std::vector<double> prev_vel_, accel_;
   std::vector<dContactGeom> buf_;
+  struct StaticGeom {
+    dGeomID id;
+    bool enabled;
+    dReal box[6];
+  };
+  std::vector<StaticGeom> static_geoms_;  // this step's static geoms (readStatic)
+  std::vector<const StaticGeom*> near_static_;
+  bool static_nested_ = false;            // a space inside static_: plain dSpaceCollide2
   // contact sensors: the watched geoms, this step's points (their joints' feedback lives in
   // feedback_, whose elements keep their addresses), and the finished steps' records
   struct Pending {
