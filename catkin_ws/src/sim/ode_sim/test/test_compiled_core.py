@@ -174,3 +174,35 @@ def test_space_scanner_in_the_office_matches_the_python_loop():
     for a, b in zip(samples['python'], samples['compiled']):
         assert np.max(np.abs(a - b)) < TOL
     assert worlds['compiled'].models['robot'].pose().p[0] != pytest.approx(0.5, abs=0.05)
+
+
+def test_broad_phase_keeps_every_contact_near_and_far_as_the_python_loop():
+    """The broad phase skips disjoint model spaces and far static geoms, never a real contact:
+    a box shoved into a second box pushes it (two awake models), a box dropped on a static
+    block far from the origin lands on the block, not the floor, and a box beside a static wall
+    it is pushed into stops at the wall - with the same trajectories in both loops."""
+    def static_block(name, pose, size):
+        return Model(name, static=True, pose=pose, links=[Link('link', collisions=[
+            Collision('c', Geometry('box', size=size))])])
+
+    def build(pw):
+        pw.add_model(ground())
+        pw.add_model(box('pusher', Pose((0.0, 0, 0.2))))
+        pw.add_model(box('pushed', Pose((0.6, 0, 0.2))))
+        pw.add_model(static_block('block', Pose((20.0, 20.0, 0.5)), (1.0, 1.0, 1.0)))
+        pw.add_model(box('dropped', Pose((20.0, 20.0, 1.5))))
+        pw.add_model(static_block('wall', Pose((-20.0, 1.0, 0.5)), (4.0, 0.2, 1.0)))
+        pw.add_model(box('walled', Pose((-20.0, 0.0, 0.2))))
+
+    def push(pw, k):
+        if k < 2000:
+            pw.models['pusher'].links['link'].add_force((40.0, 0.0, 0.0))
+            pw.models['walled'].links['link'].add_force((0.0, 40.0, 0.0))
+
+    worst, worlds = run_both(build, push, 3000)
+    assert worst < TOL
+    pw = worlds['compiled']
+    assert pw.models['pushed'].pose().p[0] > 0.7                       # it was pushed
+    assert pw.models['dropped'].pose().p[2] == pytest.approx(1.2, abs=0.01)   # on the block
+    walled = pw.models['walled'].pose().p[1]
+    assert 0.65 < walled < 0.71                     # against the wall (its face at y = 0.9)
