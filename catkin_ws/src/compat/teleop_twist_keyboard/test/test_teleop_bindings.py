@@ -141,3 +141,21 @@ def test_wait_for_subscribers_says_it_is_waiting():
 
 def test_make_twist():
     assert twist_tuple(make_twist(1, 2, 3, 4)) == (1, 2, 3, 0, 0, 4)
+
+
+def test_a_key_typed_between_reads_is_not_lost():
+    """A key that arrives while the terminal is back in normal mode (between two reads, while
+    the node prints) is the next key read; raw mode that flushed pending input lost it."""
+    import os
+    from twist_keyboard.terminal import KeyReader
+    master, slave = os.openpty()
+    try:
+        reader = KeyReader(slave)
+        os.write(master, b'i')
+        assert reader.get_key(timeout=0.5) == 'i'
+        os.write(master, b'u')                  # typed after that read restored normal mode
+        assert reader.get_key(timeout=0.5) == 'u'
+        assert reader.get_key(timeout=0.2) == ''
+    finally:
+        os.close(master)
+        os.close(slave)

@@ -29,7 +29,9 @@ class KeyReader:
         Returns '' as well when should_stop() turns true (checked every `poll` seconds), so a
         shutdown request never leaves the node blocked on the keyboard."""
         deadline = None if timeout is None else time.monotonic() + timeout
-        tty.setraw(self.fd)
+        # TCSANOW, not tty.setraw's default TCSAFLUSH: a key typed while the node was printing
+        # (the terminal in normal mode) is read now instead of being thrown away
+        tty.setraw(self.fd, termios.TCSANOW)
         try:
             while True:
                 wait = poll if deadline is None else min(poll, max(0.0, deadline - time.monotonic()))
