@@ -24,14 +24,15 @@ public:
 
   void setCommand(double command) { assert(cmd_); *cmd_ = command; }
   double getCommand() const { assert(cmd_); return *cmd_; }
-  const double* getCommandPtr() const { assert(cmd_); return cmd_; }
+  double* getCommandPtr() { return cmd_; }
 
 private:
   double* cmd_ = nullptr;
 };
 
-/// Actuator commands; getHandle claims the actuator.
-class ActuatorCommandInterface : public HardwareResourceManager<ActuatorHandle, ClaimResources>
+/// Actuator commands (any meaning; see the derived interfaces). As the original, getHandle does not
+/// claim: actuators are reached through transmissions, joints are what controllers claim.
+class ActuatorCommandInterface : public HardwareResourceManager<ActuatorHandle>
 {
 };
 

@@ -21,10 +21,10 @@ public:
   {
     if (!cmd_pos_)
       throw HardwareInterfaceException("Cannot create handle '" + js.getName() +
-                                       "'. Command position data pointer is null.");
+                                       "'. Command position pointer is null.");
     if (!cmd_vel_)
       throw HardwareInterfaceException("Cannot create handle '" + js.getName() +
-                                       "'. Command velocity data pointer is null.");
+                                       "'. Command velocity  pointer is null.");
   }
 
   void setCommand(double cmd_pos, double cmd_vel)
