@@ -61,3 +61,13 @@ def test_typedefs():
     assert objectutils.full_text('sensor_msgs/Image').count('MSG: std_msgs/Header') == 1
     req = objectutils.service_request_typedefs('std_srvs/SetBool')[0]
     assert req['fieldnames'] == ['data'] and req['fieldtypes'] == ['bool']
+
+
+def test_private_param_owner():
+    nodes = ['/turtlesim', '/rosapi', '/ns/turtlesim']
+    assert graph.private_param_owner('/turtlesim/background_r', nodes) == '/turtlesim'
+    assert graph.private_param_owner('/ns/turtlesim/x', nodes) == '/ns/turtlesim'
+    assert graph.private_param_owner('turtlesim/background_r', nodes) == '/turtlesim'
+    assert graph.private_param_owner('/turtlesim', nodes) is None     # the node's name itself
+    assert graph.private_param_owner('/turtlesim_extra/x', nodes) is None
+    assert graph.private_param_owner('/robot_description', nodes) is None

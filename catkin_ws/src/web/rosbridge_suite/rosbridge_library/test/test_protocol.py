@@ -313,3 +313,27 @@ def test_queue_thread_stops_on_finish(backend):
     while threading.active_count() >= before and time.monotonic() < deadline:
         time.sleep(0.01)
     assert threading.active_count() < before
+
+
+def test_limits_are_counted_and_subscriptions_bounded(backend):
+    counted = []
+    c = Client(backend, max_message_size=1000, max_subscriptions=2,
+               count=lambda name, n=1: counted.append(name))
+    c(op='advertise', topic='/chatter', type='std_msgs/String')
+    c(op='publish', topic='/chatter', msg={'data': 'x' * 5000}, id='big')
+    for i in range(3):
+        c(op='subscribe', topic='/t%d' % i, type='std_msgs/String', id='s%d' % i)
+    c(op='subscribe', topic='/t0', type='std_msgs/String', id='again')   # same topic: fine
+    st = {s.get('id'): s['msg'] for s in c.ops('status')}
+    assert set(st) == {None, 's2'}, st     # the oversized frame was never parsed: no id
+    assert 'more than max_message_size 1000' in st[None]
+    assert 'the most max_client_subscriptions allows: /t2 refused' in st['s2']
+    assert counted == ['messages_too_large', 'subscriptions_refused']
+    assert sorted(backend.subs) == ['/t0', '/t1']
+    assert c.proto.errors == 2      # both reached the client as error statuses
+
+
+def test_auth_op_without_authentication_is_harmless(backend):
+    c = Client(backend)
+    c(op='auth', mac='x', client='c', dest='d', rand='r', t=1, level='user', end=2)
+    assert c.ops('status') == [] and c.proto.errors == 0

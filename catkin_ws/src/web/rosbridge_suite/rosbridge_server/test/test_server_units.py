@@ -64,3 +64,40 @@ def test_bad_parameters_name_themselves(name, value, needle):
     with pytest.raises(settings.SettingsError) as e:
         settings.read(lambda n, d: value if n == name else d)
     assert needle in str(e.value)
+
+
+def test_budget_refuses_past_rate_and_refills():
+    from rosbridge_server.limits import Budget
+    now = [0.0]
+    b = Budget(rate=10, capacity=20, clock=lambda: now[0])
+    assert all(b.take() for _ in range(20))
+    assert not b.take()                  # 21 at once: over
+    now[0] += 1.0                        # 10 more a second
+    b2 = Budget(rate=10, capacity=20, clock=lambda: now[0])
+    assert b2.take(15) and b2.take(5) and not b2.take(1)
+    now[0] += 0.5
+    assert b2.take(4)
+    with pytest.raises(ValueError):
+        Budget(0, 1)
+
+
+def test_counters_report_every_change():
+    from rosbridge_server.limits import Counters
+    seen = []
+    c = Counters(seen.append)
+    c.add('clients_cut_off')
+    c.add('queue_dropped', 5)
+    c.add('queue_dropped', 0)            # nothing happened: no report
+    assert c.snapshot()['queue_dropped'] == 5 and c.snapshot()['clients_cut_off'] == 1
+    assert len(seen) == 2 and seen[-1]['queue_dropped'] == 5
+
+
+def test_limit_settings_are_checked():
+    s = settings.read({}.get)
+    assert s['max_connections_per_address'] == 32 and s['authenticate'] is False
+    assert settings.protocol_settings(s)['max_subscriptions'] == 100
+    assert settings.read({'authenticate': 'true'}.get)['authenticate'] is True
+    with pytest.raises(settings.SettingsError, match='~max_client_subscriptions: must be'):
+        settings.read({'max_client_subscriptions': 0}.get)
+    with pytest.raises(settings.SettingsError, match='~authenticate: expected true or false'):
+        settings.read({'authenticate': 'maybe'}.get)

@@ -51,6 +51,14 @@ def node_details(state, node, topics_globs, services_globs):
     return subs, pubs, srvs
 
 
+def private_param_owner(name, node_names):
+    """The node whose private namespace holds parameter `name` (/turtlesim/background_r ->
+    /turtlesim), or None."""
+    name = '/' + name.strip('/')
+    owners = [n for n in node_names if name.startswith(n.rstrip('/') + '/')]
+    return max(owners, key=len) if owners else None
+
+
 def publishers(state, topic, globs):
     if not allowed(topic, globs):
         return []

@@ -23,13 +23,32 @@ class RosApi(object):
         self.topics_glob = _parse_glob('topics_glob')
         self.services_glob = _parse_glob('services_glob')
         self.params_glob = _parse_glob('params_glob')
-        self.master = rosgraph.Master('/rosapi')
+        self.protect_node_params = bool(rospy.get_param('~protect_node_params', False))
+
+    # rospy answers service requests on concurrent threads, and an xmlrpc ServerProxy (one
+    # HTTP connection) breaks when two threads use it at once (CannotSendRequest,
+    # ResponseNotReady): every call gets its own master proxy.
+    @staticmethod
+    def master():
+        return rosgraph.Master('/rosapi')
 
     def state(self):
-        return self.master.getSystemState()
+        return self.master().getSystemState()
 
     def topic_types(self):
-        return self.master.getTopicTypes()
+        return self.master().getTopicTypes()
+
+    def _check_writable(self, name, op):
+        """~protect_node_params (ours, web.launch sets it): set_param / delete_param of a
+        running node's private parameter (/node/...) is refused."""
+        if not self.protect_node_params:
+            return
+        owner = graph.private_param_owner(name, graph.nodes(self.state()))
+        if owner:
+            raise rospy.ServiceException(
+                '%s %s: a private parameter of node %s; this launch keeps other nodes\' '
+                'parameters read-only (protect_node_params:=false opens them)'
+                % (op, name, owner))
 
     # ------------------------------------------------------------------------ handlers
     def topics(self, req):
@@ -123,6 +142,7 @@ class RosApi(object):
 
     def set_param(self, req):
         if graph.allowed(req.name, self.params_glob):
+            self._check_writable(req.name, 'set_param')
             try:
                 value = graph.json_to_param(req.value)
             except ValueError as e:
@@ -146,6 +166,7 @@ class RosApi(object):
 
     def delete_param(self, req):
         if graph.allowed(req.name, self.params_glob) and rospy.has_param(req.name):
+            self._check_writable(req.name, 'delete_param')
             rospy.delete_param(req.name)
         return []
 

@@ -22,6 +22,8 @@ DEFAULT_SETTINGS = {
     'params_glob': [],
     'status_level': 'error',
     'service_call_timeout': None,
+    'max_subscriptions': None,      # ours: topics one client may subscribe to at once
+    'count': None,                  # ours: count(name) when a limit is hit (the server's)
 }
 
 logger = logging.getLogger('rosout')   # rospy routes this logger to /rosout and the console
@@ -42,6 +44,9 @@ class Protocol(object):
         self.operations = {}
         self.capabilities = []
         self.finished = False
+        self.errors = 0             # error statuses caused by this client (the transport's
+                                    # garbage budget reads it)
+        self.count = self.settings.get('count') or (lambda name, n=1: None)
         from rosbridge_library.capabilities import (defragmentation, services, subscribe,
                                                     topics)
         for cap in (topics.Advertise, topics.Publish, subscribe.Subscribe,
@@ -49,6 +54,7 @@ class Protocol(object):
                     defragmentation.Defragment):
             self.capabilities.append(cap(self))
         self.register_operation('set_level', self.set_level)
+        self.register_operation('auth', self.auth)
 
     # -------------------------------------------------------------------------- incoming
     def register_operation(self, op, handler):
@@ -58,6 +64,7 @@ class Protocol(object):
         """One frame from the client (str: JSON text; bytes: a binary frame)."""
         limit = self.settings.get('max_message_size')
         if limit and len(data) > limit:
+            self.count('messages_too_large')
             self.log('error', 'Received a message of %d bytes, more than max_message_size %d: '
                      'dropped' % (len(data), limit))
             return
@@ -109,6 +116,11 @@ class Protocol(object):
         for data, binary in frames:
             self.send_frame(data, binary)
 
+    def auth(self, msg):
+        """`auth` reaches the protocol only where the transport does not require it (or after
+        the client authenticated): nothing to do."""
+        self.log('info', 'auth: this connection needs no (more) authentication', msg.get('id'))
+
     def set_level(self, msg):
         level = _ALIASES.get(msg.get('level'), msg.get('level'))
         if level not in LEVELS:
@@ -120,6 +132,8 @@ class Protocol(object):
         """Log as the original ("[Client N] [id: X] text") and send a `status` message if the
         client's level lets it through."""
         level = _ALIASES.get(level, level)
+        if level == 'error':
+            self.errors += 1
         if mid is not None:
             line = '[Client %s] [id: %s] %s' % (self.client_id, mid, message)
         else:

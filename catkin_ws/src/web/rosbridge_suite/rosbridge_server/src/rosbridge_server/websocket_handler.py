@@ -3,6 +3,7 @@ frames out through the client's bounded queue and a writer that awaits each writ
 
 No rospy here: the ROS side arrives as `Server.backend` and the `on_clients_changed` hook.
 """
+import json
 import logging
 import threading
 import time
@@ -13,6 +14,7 @@ from tornado.websocket import WebSocketClosedError, WebSocketHandler
 
 from rosbridge_library.protocol import Protocol
 from rosbridge_server.client_queue import ClientQueue
+from rosbridge_server.limits import Budget, Counters
 
 logger = logging.getLogger('rosout')
 
@@ -20,10 +22,15 @@ logger = logging.getLogger('rosout')
 class Server(object):
     """State shared by the connections of one server."""
 
-    def __init__(self, backend, settings, protocol_settings, on_clients_changed=None):
+    def __init__(self, backend, settings, protocol_settings, on_clients_changed=None,
+                 authenticator=None, counters=None):
+        """authenticator(auth message dict) -> bool, blocking (called on a thread), or None:
+        no authentication. counters: a limits.Counters."""
         self.backend = backend
         self.settings = settings
-        self.protocol_settings = protocol_settings
+        self.counters = counters or Counters()
+        self.protocol_settings = dict(protocol_settings, count=self.counters.add)
+        self.authenticator = authenticator
         self.on_clients_changed = on_clients_changed or (lambda clients: None)
         self.lock = threading.Lock()
         self.next_id = 0
@@ -46,6 +53,10 @@ class Server(object):
         self.on_clients_changed(self.snapshot())
         return n
 
+    def connections_from(self, ip):
+        with self.lock:
+            return sum(1 for h in self.clients.values() if h.remote_ip == ip)
+
     def snapshot(self):
         """[(ip address, connection time)] of the connected clients."""
         with self.lock:
@@ -61,6 +72,10 @@ class RosbridgeWebSocket(WebSocketHandler):
         self.remote_ip = ''
         self.connected_at = 0.0
         self.last_drop_log = 0.0
+        self.authenticated = False
+        self.auth_pending = False
+        self.pending = []          # frames that came while the auth request was checked
+        self.cut = False           # cut off: further frames are ignored
 
     def check_origin(self, origin):
         return True      # the course page is served from another port
@@ -73,15 +88,121 @@ class RosbridgeWebSocket(WebSocketHandler):
         self.loop = IOLoop.current()
         self.remote_ip = self.request.remote_ip or ''
         self.connected_at = time.time()
+        limit = s['max_connections_per_address']
+        if self.server.connections_from(self.remote_ip) >= limit:
+            self.server.counters.add('connections_refused')
+            reason = ('%d connections from %s already, the most max_connections_per_address '
+                      'allows' % (limit, self.remote_ip))
+            logger.warning('Refused a connection: %s' % reason)
+            self._close_with_status(reason)
+            return
+        self.bytes_budget = Budget(s['max_client_bytes_per_second'],
+                                   2 * s['max_client_bytes_per_second'])
+        self.messages_budget = Budget(s['max_client_messages_per_second'],
+                                      2 * s['max_client_messages_per_second'])
+        self.errors_budget = Budget(s['max_client_errors_per_second'],
+                                    10 * s['max_client_errors_per_second'])
+        self.authenticated = self.server.authenticator is None
         self.queue = ClientQueue(s['max_client_queue_messages'], s['max_client_queue_bytes'])
         self.client_id, n = self.server.add(self)
         self.protocol = Protocol(self.client_id, self.server.backend, self._send_frame,
                                  self.server.protocol_settings)
         self.set_nodelay(True)
         logger.info('Client connected.  %d clients total.' % n)
+        if not self.authenticated:
+            self.loop.call_later(s['auth_timeout'], self._auth_timeout)
 
     def on_message(self, message):
+        if self.cut or self.protocol is None:
+            return
+        s = self.server.settings
+        if not self.bytes_budget.take(len(message)):
+            return self._cut_off('sent more than %d bytes a second'
+                                 % s['max_client_bytes_per_second'])
+        if not self.messages_budget.take(1):
+            return self._cut_off('sent more than %d messages a second'
+                                 % s['max_client_messages_per_second'])
+        if not self.authenticated:
+            return self._before_auth(message)
+        self._handle(message)
+
+    def _handle(self, message):
+        before = self.protocol.errors
         self.protocol.incoming(message)
+        bad = self.protocol.errors - before
+        if bad and not self.errors_budget.take(bad):
+            self._cut_off('sent more than %d bad messages a second'
+                          % self.server.settings['max_client_errors_per_second'])
+
+    # ------------------------------------------------------------------- authentication
+    def _before_auth(self, message):
+        """authenticate: the first op must be a good `auth`; anything else closes."""
+        if self.auth_pending:
+            if len(self.pending) >= 1000:
+                return self._cut_off('sent 1000 messages while its auth was being checked')
+            self.pending.append(message)
+            return
+        try:
+            msg = json.loads(message.decode('utf-8') if isinstance(message, bytes) else message)
+        except (ValueError, UnicodeDecodeError):
+            msg = None
+        if not isinstance(msg, dict) or msg.get('op') != 'auth':
+            op = msg.get('op') if isinstance(msg, dict) else None
+            return self._refuse('its first op was %r, not auth' % (op,))
+        self.auth_pending = True
+        threading.Thread(target=self._check_auth, args=(msg,), daemon=True,
+                         name='rosbridge auth %s' % self.client_id).start()
+
+    def _check_auth(self, msg):
+        try:
+            ok = bool(self.server.authenticator(msg))
+            why = 'wrong, expired or replayed MAC'
+        except Exception as e:    # a malformed request or no authenticate service
+            ok, why = False, str(e)
+        self.loop.add_callback(self._auth_done, ok, why)
+
+    def _auth_done(self, ok, why):
+        if self.protocol is None or self.protocol.finished or self.cut:
+            return
+        self.auth_pending = False
+        if not ok:
+            return self._refuse(why)
+        self.authenticated = True
+        logger.info('Client %s has authenticated.' % self.client_id)
+        pending, self.pending = self.pending, []
+        for message in pending:
+            if self.cut:
+                break
+            self._handle(message)
+
+    def _auth_timeout(self):
+        if not self.authenticated and not self.cut and not self.protocol.finished:
+            self._refuse('no auth within auth_timeout %g s'
+                         % self.server.settings['auth_timeout'])
+
+    def _refuse(self, why):
+        self.cut = True
+        self.server.counters.add('auth_refused')
+        logger.warning('Client %s did not authenticate (%s). Closing connection.'
+                       % (self.client_id, why))
+        self._close_with_status('authentication required: %s' % why)
+
+    # ------------------------------------------------------------------------ limits
+    def _cut_off(self, why):
+        self.cut = True
+        self.server.counters.add('clients_cut_off')
+        logger.warning('[Client %s] cut off: it %s' % (self.client_id, why))
+        self._close_with_status('cut off: the client %s' % why)
+
+    def _close_with_status(self, text):
+        """A status message (ahead of anything queued), then the close frame."""
+        if self.queue is not None:
+            self.queue.close()
+        try:
+            self.write_message(json.dumps({'op': 'status', 'level': 'error', 'msg': text}))
+        except WebSocketClosedError:
+            pass
+        self.close(1008, text[:120])
 
     def on_close(self):
         if self.protocol is None:
@@ -104,11 +225,14 @@ class RosbridgeWebSocket(WebSocketHandler):
         if self.queue.put(data, binary):
             self.loop.add_callback(self._drain)
         if self.queue.dropped != before:
+            self.server.counters.add('queue_dropped', self.queue.dropped - before)
             now = time.monotonic()
             if now - self.last_drop_log > 5.0:
                 self.last_drop_log = now
-                logger.warning('[Client %s] outgoing queue full: dropped %d messages so far'
-                               % (self.client_id, self.queue.dropped))
+                # the client sees it (if its status level lets warnings through) as the
+                # newest frame of its queue
+                self.protocol.log('warning', 'outgoing queue full: dropped %d messages so far'
+                                  % self.queue.dropped)
 
     @gen.coroutine
     def _drain(self):

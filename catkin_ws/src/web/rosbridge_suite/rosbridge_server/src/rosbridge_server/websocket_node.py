@@ -3,6 +3,7 @@ import signal
 import socket
 import sys
 import threading
+import time
 
 import rospy
 from std_msgs.msg import Int32
@@ -13,6 +14,7 @@ from tornado.web import Application
 
 from rosbridge_library.internal.ros_backend import RosBackend
 from rosbridge_server import settings as settings_mod
+from rosbridge_server.limits import Counters
 from rosbridge_server.websocket_handler import RosbridgeWebSocket, Server
 
 
@@ -28,6 +30,59 @@ def _clients_publishers():
                                               for ip, t in clients]))
     publish([])
     return publish
+
+
+def _authenticator():
+    """The original's check: rosauth's `authenticate` service judges the auth message."""
+    from rosauth.srv import Authentication
+
+    def check(msg):
+        fields = {}
+        for name in ('mac', 'client', 'dest', 'rand', 'level'):
+            if not isinstance(msg.get(name), str):
+                raise ValueError('auth: field %s must be a string' % name)
+            fields[name] = msg[name]
+        for name in ('t', 'end'):
+            if isinstance(msg.get(name), bool) or not isinstance(msg.get(name), (int, float)):
+                raise ValueError('auth: field %s must be a number (seconds)' % name)
+            fields[name] = rospy.Time.from_sec(max(0.0, float(msg[name])))
+        try:
+            rospy.wait_for_service('authenticate', timeout=5.0)
+        except rospy.ROSException:
+            raise RuntimeError('no authenticate service (start rosauth\'s '
+                               'ros_mac_authentication)')
+        return rospy.ServiceProxy('authenticate', Authentication)(**fields).authenticated
+    return check
+
+
+def _counters_publisher():
+    """~limits (diagnostic_msgs/DiagnosticStatus, latched): how often each limit was hit,
+    published at most once a second."""
+    from diagnostic_msgs.msg import DiagnosticStatus, KeyValue
+    pub = rospy.Publisher('~limits', DiagnosticStatus, queue_size=1, latch=True)
+    lock = threading.Lock()
+    state = {'last': 0.0, 'timer': None, 'values': None}
+
+    def publish():
+        with lock:
+            values, state['timer'] = state['values'], None
+            state['last'] = time.monotonic()
+        level = DiagnosticStatus.WARN if any(values.values()) else DiagnosticStatus.OK
+        pub.publish(DiagnosticStatus(level=level, name='rosbridge_websocket limits',
+                                     message='limits hit since start',
+                                     values=[KeyValue(k, str(v))
+                                             for k, v in sorted(values.items())]))
+
+    def on_change(values):
+        with lock:
+            state['values'] = values
+            if state['timer'] is not None:
+                return
+            wait = max(0.0, 1.0 - (time.monotonic() - state['last']))
+            state['timer'] = threading.Timer(wait, publish)
+            state['timer'].daemon = True
+            state['timer'].start()
+    return on_change
 
 
 def _bind(s, stopping):
@@ -60,15 +115,16 @@ def main(argv=None):
     except settings_mod.SettingsError as e:
         rospy.logfatal('rosbridge_websocket: %s' % e)
         sys.exit(1)
-    if s['authenticate']:
-        rospy.logwarn('~authenticate is not supported by this rosbridge_server: clients are '
-                      'not authenticated')
     if s['bson_only_mode']:
         rospy.logwarn('~bson_only_mode is not supported by this rosbridge_server: JSON/CBOR '
                       'are used')
 
     backend = RosBackend(unregister_timeout=s['unregister_timeout'])
-    server = Server(backend, s, settings_mod.protocol_settings(s), _clients_publishers())
+    counters = Counters(_counters_publisher())
+    counters.on_change(counters.snapshot())
+    server = Server(backend, s, settings_mod.protocol_settings(s), _clients_publishers(),
+                    authenticator=_authenticator() if s['authenticate'] else None,
+                    counters=counters)
     app_settings = {'websocket_max_message_size': settings_mod.tornado_frame_limit(s)}
     if s['websocket_ping_interval'] > 0:
         app_settings['websocket_ping_interval'] = s['websocket_ping_interval']
@@ -97,8 +153,9 @@ def main(argv=None):
         return
     rospy.on_shutdown(lambda: loop.add_callback(loop.stop))
     scheme = 'wss' if ssl_options else 'ws'
-    rospy.loginfo('Rosbridge WebSocket server started at %s://%s:%d'
-                  % (scheme, s['address'] or '0.0.0.0', port))
+    rospy.loginfo('Rosbridge WebSocket server started at %s://%s:%d%s'
+                  % (scheme, s['address'] or '0.0.0.0', port,
+                     ' (clients must authenticate: rosauth)' if s['authenticate'] else ''))
     try:
         loop.start()
     finally:

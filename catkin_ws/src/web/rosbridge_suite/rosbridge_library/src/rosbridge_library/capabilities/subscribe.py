@@ -143,6 +143,12 @@ class Subscribe(Capability):
         ros_loader.get_message_class(msg_type)    # unknown type: an error to the client
         sid = msg.get('id')
         sub = self.subscriptions.get(topic)
+        limit = self.protocol.settings.get('max_subscriptions')
+        if sub is None and limit and len(self.subscriptions) >= limit:
+            self.protocol.count('subscriptions_refused')
+            raise Exception('this client already subscribes to %d topics, the most '
+                            'max_client_subscriptions allows: %s refused'
+                            % (len(self.subscriptions), topic))
         if sub is None:
             sub = Subscription(self.protocol, topic)
             sub.add(sid, spec)
