@@ -70,7 +70,7 @@ def test_obj_quad_is_triangulated():
 @pytest.mark.parametrize('name, expected', [
     ('empty.stl', 'cannot read'),
     ('garbage.stl', 'cannot read'),
-    ('thing.dae', 'only STL meshes are supported'),
+    ('thing.dae', 'cannot read: Collada: File came out empty'),
     ('missing.stl', 'cannot read'),
 ])
 def test_bad_meshes_one_line(name, expected):

@@ -256,7 +256,7 @@ def test_materials_table():
     ('include_no_uri.world', 2, ['<include> needs <uri>']),
     ('unknown_model.world', 2, ['model://no_such_model', 'not found', MODELS]),
     ('heightmap.sdf', 2, ['<heightmap> geometry is not supported']),
-    ('dae_collision.sdf', 2, ['thing.dae', 'only STL meshes are supported']),
+    ('dae_collision.sdf', 2, ['thing.dae', 'cannot read: Collada: File came out empty']),
     ('zero_mass.sdf', 2, ["<link name='a'>", 'zero mass']),
     ('bad_number.world', 2, ['<max_step_size> must be 1 number', "'fast'"]),
     ('no_world.world', 1, ['no <world>']),

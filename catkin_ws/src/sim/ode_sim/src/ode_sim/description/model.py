@@ -35,6 +35,24 @@ class Geometry:
     scale: Tuple[float, float, float] = (1.0, 1.0, 1.0)  # mesh
     vertices: Optional[np.ndarray] = None   # mesh: (N, 3) float, already scaled
     faces: Optional[np.ndarray] = None      # mesh: (M, 3) int
+    submesh: str = ''               # mesh: <submesh><name>, '' the whole file
+    center: bool = False            # mesh: <submesh><center>
+    parts: list = field(default_factory=list)   # mesh: render parts (description.mesh.MeshPart)
+
+
+@dataclass
+class Material:
+    """A visual's look: a mesh file's material (COLLADA effect, MTL), an OGRE material script
+    or SDF <ambient>/<diffuse>/<specular>/<emissive>."""
+    name: str = ''
+    diffuse: Tuple[float, float, float, float] = (0.7, 0.7, 0.7, 1.0)
+    ambient: Optional[Tuple[float, float, float, float]] = None   # None: the diffuse colour
+    emissive: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    specular: Tuple[float, float, float] = (0.0, 0.0, 0.0)
+    opacity: float = 1.0
+    texture: str = ''               # absolute path of the diffuse texture image, '' none
+    uv_scale: Tuple[float, float] = (1.0, 1.0)   # OGRE texture_unit scale (uv / scale)
+    source: str = ''                # where it was defined, for messages
 
 
 @dataclass
@@ -69,6 +87,7 @@ class Visual:
     pose: Pose = field(default_factory=Pose)
     color: Tuple[float, float, float, float] = (0.7, 0.7, 0.7, 1.0)   # diffuse RGBA
     material_name: str = ''         # e.g. 'Gazebo/Red' when given by name
+    material: Optional[Material] = None   # the visual's own material (overrides the mesh's)
 
 
 @dataclass

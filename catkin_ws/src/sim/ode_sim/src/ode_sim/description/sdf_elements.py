@@ -6,7 +6,7 @@ import xml.etree.ElementTree as ET
 import numpy as np
 
 from ode_sim.description import materials
-from ode_sim.description.mesh import load_stl
+from ode_sim.description.mesh import load_mesh
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, ModelError,
                                        Plugin, Sensor, Surface, Visual)
 from ode_sim.description.transforms import Pose
@@ -58,26 +58,38 @@ def parse_geometry(ctx, geom_el, owner, optional_mesh=False):
         if not uri:
             raise ctx.err(shape, '<mesh> needs <uri>')
         scale = ctx.floats(shape, 'scale', 3, (1.0, 1.0, 1.0))
-        if shape.find('submesh') is not None:
-            ctx.warn(shape, '<submesh> is ignored: the whole mesh is used')
-        return load_mesh_geometry(ctx, shape, uri, scale, optional_mesh)
+        sub = shape.find('submesh')
+        name, center = '', False
+        if sub is not None:
+            name = text_of(sub, 'name') or ''
+            if not name:
+                raise ctx.err(sub, '<submesh> needs <name>')
+            center = (text_of(sub, 'center') or 'false').strip().lower() in ('true', '1')
+        return load_mesh_geometry(ctx, shape, uri, scale, optional_mesh, name, center)
     if kind == 'empty':
         return None
     raise ctx.err(shape, '<%s> geometry is not supported (box, cylinder, sphere, plane, mesh)'
                   % kind)
 
 
-def load_mesh_geometry(ctx, elem, uri, scale, optional):
+def load_mesh_geometry(ctx, elem, uri, scale, optional, submesh='', center=False):
+    """Geometry of a mesh file (description/mesh.py load_mesh); its warnings (a missing
+    texture, ...) go to the context's warnings, once per file and element."""
     try:
         filename = ctx.paths.resolve_uri(uri, ctx.base_dir)
-        verts, faces = load_stl(filename, scale)
+        mesh = load_mesh(filename, scale, submesh, center)
     except ModelError as e:
         if optional:
             ctx.warn(elem, '%s; the visual is not drawn' % e)
             return None
         raise ctx.err(elem, str(e))
+    if optional:                          # visuals: what the camera will not show as written
+        for w in mesh.warnings:
+            if w not in ctx.warnings:
+                ctx.warnings.append(w)
     return Geometry('mesh', uri=uri, filename=filename, scale=tuple(scale),
-                    vertices=verts, faces=faces)
+                    vertices=mesh.vertices, faces=mesh.faces, submesh=submesh or '',
+                    center=bool(center), parts=mesh.parts)
 
 
 def read_nums(ctx, el, obj, names):

@@ -14,6 +14,7 @@
 #include <vector>
 #include <tuple>
 
+#include "meshimport.h"
 #include "raycast.h"
 #include "stepper.h"
 #include "trimesh.h"
@@ -78,6 +79,51 @@ void placeGeom(uintptr_t g, const Vec3& p, const Quat& q, bool offset) {
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
+
+  // mesh files through assimp (description/mesh.py): a list of mesh instances (node and mesh
+  // name, material index, positions (N,3) float64, normals (N,3) float32, uvs (N,2) float32 or
+  // None, faces (M,3) int32) and a list of materials (dicts); RuntimeError: assimp's reason
+  m.def(
+      "import_mesh",
+      [](const std::string& path) {
+        ode_sim::ImportedScene sc;
+        {
+          py::gil_scoped_release release;
+          sc = ode_sim::importScene(path);
+        }
+        py::list meshes, mats;
+        for (auto& im : sc.meshes) {
+          const py::ssize_t n = static_cast<py::ssize_t>(im.positions.size() / 3);
+          const py::ssize_t f = static_cast<py::ssize_t>(im.faces.size() / 3);
+          py::array_t<double> pos({n, py::ssize_t(3)});
+          std::copy(im.positions.begin(), im.positions.end(), pos.mutable_data());
+          py::array_t<float> nrm({n, py::ssize_t(3)});
+          std::copy(im.normals.begin(), im.normals.end(), nrm.mutable_data());
+          py::array_t<int32_t> faces({f, py::ssize_t(3)});
+          std::copy(im.faces.begin(), im.faces.end(), faces.mutable_data());
+          py::object uv = py::none();
+          if (!im.uvs.empty()) {
+            py::array_t<float> a({n, py::ssize_t(2)});
+            std::copy(im.uvs.begin(), im.uvs.end(), a.mutable_data());
+            uv = a;
+          }
+          meshes.append(py::make_tuple(im.node, im.name, im.material, pos, nrm, uv, faces));
+        }
+        for (auto& m : sc.materials) {
+          py::dict d;
+          d["name"] = m.name;
+          d["diffuse"] = m.has_diffuse ? py::cast(m.diffuse) : py::none();
+          d["ambient"] = m.has_ambient ? py::cast(m.ambient) : py::none();
+          d["emissive"] = m.has_emissive ? py::cast(m.emissive) : py::none();
+          d["specular"] = m.has_specular ? py::cast(m.specular) : py::none();
+          d["opacity"] = m.opacity;
+          d["shininess"] = m.shininess;
+          d["texture"] = m.texture;
+          mats.append(d);
+        }
+        return py::make_tuple(meshes, mats);
+      },
+      py::arg("path"));
   m.doc() = "ode_sim's compiled step loop on libode (see engine/core/stepper.h)";
   m.def("body_world", [](uintptr_t b) { return num(dBodyGetWorld(as<dBodyID>(b))); });
   m.def("geom_body", [](uintptr_t g) { return num(dGeomGetBody(as<dGeomID>(g))); });
