@@ -88,7 +88,38 @@ fi
 # 3. JavaScript packages of the web view (pinned by course_web's package-lock.json) ------
 bash "$REPO/catkin_ws/src/web/course_web/scripts/install_js.sh" || die "course_web's JavaScript packages could not be installed"
 
-# 4. catkin workspace ------------------------------------------------------------------
+# 4. rosdep (textbook §1.6: rosdep update, rosdep install --from-paths src --ignore-src) -----
+# Debian's python3-rosdep2 comes initialised, its 20-default.list naming the rosdistro
+# repository on the internet. The course's rules are a local file (deps/rosdep/ros-course.yaml:
+# Debian's package names for ROS libraries, [] for the workspace's own packages), listed first;
+# the internet sources are set aside (Debian's file kept as 20-default.list.debian) and the
+# rosdistro index is local too, so `rosdep update` works offline.
+ROSDEP_LISTS=/etc/ros/rosdep/sources.list.d
+put_file() {  # put_file PATH CONTENT: write only when it differs (idempotent)
+    [ "$(cat "$1" 2>/dev/null)" = "$2" ] && return 0
+    $SUDO mkdir -p "$(dirname "$1")"
+    printf '%s\n' "$2" | $SUDO tee "$1" >/dev/null
+    log "wrote $1"
+}
+[ -d "$ROSDEP_LISTS" ] || die "$ROSDEP_LISTS missing: python3-rosdep2 is not installed (deps/debian.txt)"
+if [ -f "$ROSDEP_LISTS/20-default.list" ] && grep -q '^[^#]*https\?://' "$ROSDEP_LISTS/20-default.list" \
+        && [ ! -f "$ROSDEP_LISTS/20-default.list.debian" ]; then
+    $SUDO cp "$ROSDEP_LISTS/20-default.list" "$ROSDEP_LISTS/20-default.list.debian"
+fi
+put_file "$ROSDEP_LISTS/05-ros-course.list" "# the ROS course's rosdep rules (written by its scripts/setup.sh)
+yaml file://$REPO/deps/rosdep/ros-course.yaml"
+put_file "$ROSDEP_LISTS/20-default.list" "# rosdep's default sources, on this course machine local only (written by the course's
+# scripts/setup.sh; Debian's list of internet sources is kept as 20-default.list.debian):
+# 05-ros-course.list and Debian's 10-debian.list"
+put_file /etc/xdg/rosdistro/config.yaml "# rosdistro index of the ROS course (written by its scripts/setup.sh)
+index_url: file://$REPO/deps/rosdep/index-v4.yaml"
+rosdep update >"$REPO/.deps/rosdep-update.log" 2>&1 || {
+    cat "$REPO/.deps/rosdep-update.log" >&2
+    die "rosdep update failed (log: .deps/rosdep-update.log)"
+}
+log "rosdep: course rules registered, cache updated"
+
+# 5. catkin workspace ------------------------------------------------------------------
 log "building catkin_ws with catkin_make"
 mkdir -p "$REPO/.deps"
 bash "$REPO/scripts/build.sh" all tests >"$REPO/.deps/catkin_make.log" 2>&1 || {

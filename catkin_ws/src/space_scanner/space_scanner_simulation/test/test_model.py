@@ -50,7 +50,7 @@ def test_skid_steer(skid_model):
     assert xyz['leftFrontJoint'][0] > 0 > xyz['leftRearJoint'][0]
     assert xyz['leftFrontJoint'][1] > 0 > xyz['rightFrontJoint'][1]
     assert float(p.findtext('wheelSeparation')) == pytest.approx(xyz['leftRearJoint'][1] - xyz['rightRearJoint'][1])
-    r = float(model.links['wheel_1_link'].find('collision/geometry/cylinder').get('radius'))
+    r = float(model.links['left_front_wheel'].find('collision/geometry/cylinder').get('radius'))
     assert float(p.findtext('wheelDiameter')) == pytest.approx(2 * r)
     for tag in ('updateRate', 'torque', 'commandTopic', 'odometryTopic', 'odometryFrame', 'robotBaseFrame',
                 'broadcastTF', 'covariance_x', 'covariance_y', 'covariance_yaw'):
