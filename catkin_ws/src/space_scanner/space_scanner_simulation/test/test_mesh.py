@@ -95,6 +95,18 @@ def test_simulation_xacro_uses_the_mesh_and_passes_check_urdf():
     assert '<mesh' not in boxes and mc.parse(boxes).links['upper_link'].find('visual') is not None
 
 
+def test_ode_sim_reads_the_mesh_z_up():
+    """The simulator's URDF reader loads base.dae as base_link's visual, in base_link's frame."""
+    import numpy as np
+    from ode_sim.description import urdf
+    m = urdf.parse_urdf(mc.expand_xacro(XACRO), XACRO, 'robot')
+    assert m.warnings == []
+    [mesh] = [v.geometry for link in m.links for v in link.visuals if v.geometry.kind == 'mesh']
+    assert mesh.filename == DAE
+    assert np.allclose(mesh.vertices.min(axis=0), [-0.13, -0.075, -0.002])
+    assert np.allclose(mesh.vertices.max(axis=0), [0.13, 0.075, 0.066])
+
+
 COLOURS = {'green decks (the mesh)': (0.1, 0.75, 0.2, 1.0), 'red front wheels': (0.85, 0.05, 0.05, 1.0),
            'blue rear wheels': (0.05, 0.2, 0.85, 1.0)}
 
