@@ -2,13 +2,15 @@
 paths, and world names such as `worlds/empty.world`.
 
 Lookup order for `model://NAME` (as gzserver with gazebo_ros): the directories given as `extra`,
-then the GAZEBO_MODEL_PATH entries (colon separated), then ode_sim's own model library
-`<ode_sim package>/models`. World files: the path itself, then GAZEBO_RESOURCE_PATH entries,
+then the GAZEBO_MODEL_PATH entries (colon separated), ~/.gazebo/models, ode_sim's own model
+library `<ode_sim package>/models`, then Gazebo's model database (GAZEBO_MODEL_DATABASE_URI,
+modeldb.py: downloaded once into ~/.gazebo/models). World files: the path itself, then GAZEBO_RESOURCE_PATH entries,
 then the ode_sim package directory (so `worlds/empty.world` is ode_sim's `worlds/empty.world`).
 """
 import os
 import xml.etree.ElementTree as ET
 
+from ode_sim.description import modeldb
 from ode_sim.description.model import ModelError
 
 _PKG_DIR_CACHE = []
@@ -73,11 +75,13 @@ def _version_key(text):
 
 class ModelPaths:
     """model:// lookup, in gzserver's (and gazebo_ros spawn_model's) order: `extra` (list or
-    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/.
+    colon separated string), GAZEBO_MODEL_PATH, ~/.gazebo/models, this package's models/,
+    then the model database (`database`: a URI, default GAZEBO_MODEL_DATABASE_URI or Gazebo's;
+    '' for none; a model found there is downloaded into ~/.gazebo/models).
     The one model lookup: gazebo_ros's spawn_model -database uses it too. `env` (default
     os.environ) and `library` (default this package's models/; '' for none) are injectable."""
 
-    def __init__(self, extra=None, env=None, library=None):
+    def __init__(self, extra=None, env=None, library=None, database=None):
         env = os.environ if env is None else env
         if isinstance(extra, str):
             extra = _split_path(extra)
@@ -85,14 +89,18 @@ class ModelPaths:
         self.env = [os.path.abspath(os.path.expanduser(p))
                     for p in _split_path(env.get('GAZEBO_MODEL_PATH', ''))]
         home = env.get('HOME')
+        self.cache = os.path.join(home, '.gazebo', 'models') if home else ''
         if home:
-            self.env.append(os.path.join(home, '.gazebo', 'models'))
+            self.env.append(self.cache)
         self.library = os.path.join(package_dir(), 'models') if library is None else library
+        if database is None:
+            database = env.get('GAZEBO_MODEL_DATABASE_URI', modeldb.DEFAULT_URI)
+        self.database = (database or '').strip()
 
     @classmethod
     def only(cls, roots):
         """A lookup in exactly these directories, in this order."""
-        return cls(roots, env={}, library='')
+        return cls(roots, env={}, library='', database='')
 
     @property
     def roots(self):
@@ -113,12 +121,33 @@ class ModelPaths:
         return None
 
     def model_dir(self, name):
-        """Directory of model `name`, or ModelError naming the searched directories."""
+        """Directory of model `name`: found locally, else downloaded from the model database;
+        else ModelError naming the searched directories and what the database said."""
         d = self.find_model_dir(name)
-        if d is None:
-            raise ModelError('model://%s: model not found (searched: %s)'
-                             % (name.strip('/'), ', '.join(self.roots) or 'nothing'))
-        return d
+        if d is not None:
+            return d
+        name = name.strip('/')
+        where = 'model://%s: not found in GAZEBO_MODEL_PATH, ~/.gazebo/models and the model ' \
+                'library (searched: %s)' % (name, ', '.join(self.roots) or 'nothing')
+        if not self.database:
+            raise ModelError(where + '; no model database (GAZEBO_MODEL_DATABASE_URI is empty)')
+        if not self.cache:
+            raise ModelError(where + '; HOME is not set, so the model database %s cannot be '
+                             'used (it downloads into ~/.gazebo/models)' % self.database)
+        db = modeldb.ModelDatabase(self.database, self.cache)
+        try:
+            names = db.models()
+        except modeldb.DatabaseError as e:
+            raise ModelError('%s and the model database %s cannot be reached: %s'
+                             % (where, db.uri, e)) from None
+        if name not in names:
+            raise ModelError('%s nor in the model database %s (its database.config lists %d '
+                             'models)' % (where, db.uri, len(names)))
+        try:
+            return db.fetch(name)
+        except modeldb.DatabaseError as e:
+            raise ModelError('%s; the model database %s has it but the download failed: %s'
+                             % (where, db.uri, e)) from None
 
     def model_sdf(self, name):
         """The SDF file of model `name` (model_sdf_file of its directory)."""
@@ -178,23 +207,31 @@ class ModelPaths:
         raise ModelError('world %s: file not found (searched: %s)' % (name, ', '.join(searched)))
 
 
+SDF_PARSER_VERSION = (1, 6)      # the newest SDF version the description layer reads
+
+
 def model_sdf_file(model_dir):
-    """The SDF file of a model directory: the <sdf> of model.config with the highest version,
-    else model.sdf. ModelError when model.config is broken or names a missing file."""
+    """The SDF file of a model directory, chosen from model.config as Gazebo does: the <sdf>
+    with the highest version that the parser reads (<= SDF_PARSER_VERSION), else the first
+    <sdf>; model.sdf when model.config names none. ModelError when model.config is broken
+    or names a missing file."""
     config = os.path.join(model_dir, 'model.config')
     if os.path.isfile(config):
         try:
             root = ET.parse(config).getroot()
         except ET.ParseError as e:
             raise ModelError('%s: malformed XML: %s' % (config, e))
-        best = None
+        best = first = None
         for el in root.findall('sdf'):
             fname = (el.text or '').strip()
             if not fname:
                 continue
+            if first is None:
+                first = ((0,), fname)
             key = _version_key(el.get('version'))
-            if best is None or key > best[0]:
+            if key <= SDF_PARSER_VERSION and (best is None or key > best[0]):
                 best = (key, fname)
+        best = best or first
         if best is not None:
             path = os.path.join(model_dir, best[1])
             if not os.path.isfile(path):
