@@ -128,11 +128,34 @@ def test_room_geometry_and_bad_pillars():
         parse_pillars('1,2')
 
 
+@pytest.mark.parametrize('cmd', [P.CMD_SCAN, P.CMD_EXPRESS_SCAN])
+def test_emulator_garbage_is_fixed_by_the_stream_not_the_clock(cmd):
+    """The same bytes however the wall clock slices the stream (a loaded machine polls it
+    rarely and in uneven steps): garbage is placed by packet count and seed."""
+    def run(steps):
+        dev = A1Device(Room(), garbage_every=0.05, seed=3)
+        dev.receive(P.request(cmd, P.express_scan_payload() if cmd == P.CMD_EXPRESS_SCAN else b''), 0.0)
+        out, t = bytearray(), 0.0
+        for dt in steps:
+            t += dt
+            out += dev.stream(t)
+        return bytes(out), t
+    even, t_even = run([0.002] * 500)
+    uneven, t_uneven = run([0.0005, 0.3, 0.0131, 0.2864, 0.4])
+    assert t_even == pytest.approx(1.0) and t_uneven == pytest.approx(1.0)
+    n = min(len(even), len(uneven))
+    assert n > 1000 and even[:n] == uneven[:n]
+    clean = A1Device(Room(), seed=3)
+    clean.receive(P.request(cmd, P.express_scan_payload() if cmd == P.CMD_EXPRESS_SCAN else b''), 0.0)
+    assert len(clean.stream(1.0)) < len(even), 'garbage was spliced in'
+
+
 @pytest.fixture(params=[0.0, 0.05], ids=['clean', 'garbage'])
 def emulated(tmp_path, request):
-    """An A1 emulator thread on a pty (clean, or with garbage bytes every 50 ms)."""
+    """An A1 emulator thread on a pty (clean, or with garbage bytes once per 50 ms of the
+    device's sample timeline; where each burst lands is fixed by the seed, not the load)."""
     path = str(tmp_path / 'ttyRPLIDAR')
-    holder = {'dev': A1Device(Room(), garbage_every=request.param), 'run': True,
+    holder = {'dev': A1Device(Room(), garbage_every=request.param, seed=2), 'run': True,
               'garbage': request.param > 0}
     pty = PtyPort(path)
 

@@ -70,7 +70,7 @@ class A1Device:
         self.mode = None                  # None, 'standard', 'express'
         self.t0 = 0.0
         self.sent = 0                     # samples (standard) or capsules (express) emitted
-        self.next_garbage = None
+        self.next_garbage = None          # index of the sample/capsule that garbage hits next
         self.requests = []                # commands received (for tests)
         self.emitted = []                 # (angle_q6, dist_q2) of emitted standard samples
 
@@ -161,7 +161,29 @@ class A1Device:
         self.mode = mode
         self.t0 = now
         self.sent = 0
-        self.next_garbage = now + self.garbage_every if self.garbage_every > 0 else None
+        self.next_garbage = self._garbage_slot(0) if self.garbage_every > 0 else None
+
+    def _garbage_period(self):
+        """Packets (standard samples or express capsules) between two bursts of garbage:
+        `garbage_every` seconds of the device's own timeline, so where garbage lands is fixed
+        by the stream, not by how the machine's load slices the wall clock."""
+        us = self.std_us if self.mode == 'standard' else self.express_us * 32
+        return max(1, int(round(self.garbage_every * 1e6 / us)))
+
+    def _garbage_slot(self, start):
+        """The packet hit in the period that begins at packet `start`: a seeded place within
+        the period, so bursts do not fall in step with the revolution's start packets."""
+        return start + self.rnd.randrange(self._garbage_period())
+
+    def _packet(self, data):
+        """One encoded packet, with garbage spliced in when its index is due."""
+        if self.next_garbage is None or self.sent != self.next_garbage:
+            return data
+        period = self._garbage_period()
+        self.next_garbage = self._garbage_slot(self.sent - self.sent % period + period)
+        cut = self.rnd.randrange(len(data))
+        junk = bytes(self.rnd.randrange(256) for _ in range(self.rnd.randrange(1, 12)))
+        return data[:cut] + junk + data[cut:]
 
     def stream(self, now):
         """Measurement bytes due by time `now` (s)."""
@@ -171,19 +193,14 @@ class A1Device:
             while self.sent < due:
                 a, d, s = self.standard_sample(self.sent)
                 q = 47 if d else 0
-                out += P.encode_standard(a, d, q, s)
+                out += self._packet(P.encode_standard(a, d, q, s))
                 self.emitted.append((a, d))
                 self.sent += 1
         elif self.mode == 'express':
             due = int((now - self.t0) * 1e6 / self.express_us) // 32
             while self.sent < due:
-                out += self.capsule(self.sent)
+                out += self._packet(self.capsule(self.sent))
                 self.sent += 1
-        if self.next_garbage is not None and now >= self.next_garbage and out:
-            cut = self.rnd.randrange(len(out))
-            junk = bytes(self.rnd.randrange(256) for _ in range(self.rnd.randrange(1, 12)))
-            out[cut:cut] = junk
-            self.next_garbage = now + self.garbage_every
         return bytes(out)
 
 
