@@ -1,8 +1,10 @@
-"""labs/grade LAB --isu ID [--repo PATH] [--junit FILE] [--timeout S] [--no-sandbox]
+"""labs/grade LAB --isu ID [--repo PATH] [--junit FILE] [--timeout S] [--variants FILE] [--no-sandbox]
 
 Finds the lab's package in the student's repository, builds it in a fresh overlay workspace
 on top of the course workspace, runs the lab's rostest for the variant (last ISU digit),
-prints a per-criterion report (ru/en) and writes JUnit XML. Exit 0 only if all criteria pass.
+prints a per-criterion report (ru/en) and, with --junit, writes JUnit XML. Exit 0 only if all
+criteria pass. The variant table is the textbook's (labs/LAB/variants.yaml) unless --variants
+names a corrected one (same format, validated first).
 """
 import argparse
 import json
@@ -14,9 +16,11 @@ import tempfile
 import time
 
 import course_testing
+import yaml
 
 from grading import lab1, lab2, lab3, lab4, sandbox
-from grading.common import (LABS_DIR, Criterion, GradeError, parse_isu, read_report, reason)
+from grading.common import (LABS_DIR, VARIANTS_ENV, Criterion, GradeError, load_variants, parse_isu,
+                            read_report, reason)
 from grading.report import format_report, write_junit
 from grading.workspace import StepFailed, build_overlay, course_env, locate, run_group
 
@@ -55,14 +59,27 @@ def checker_crash(work):
     return None
 
 
-def run_checker(lab, isu, env, work, timeout, box=None):
+def write_variants(lab, path, work):
+    """The validated table of `path` as work/variants.yaml, where the checker reads it."""
+    table = load_variants(lab, path)
+    out = os.path.join(work, 'variants.yaml')
+    with open(out, 'w') as f:
+        yaml.safe_dump({'source': os.path.abspath(path), 'variants': table}, f, allow_unicode=True)
+    return out
+
+
+def run_checker(lab, isu, env, work, timeout, box=None, variants=None):
     """Run the lab's rostest; return the checker's criteria (or None) and a log path.
     With a sandbox `box` the rostest (master and checker) runs in a network namespace of its
-    own, and the checker starts the student's nodes inside the sandbox."""
+    own, and the checker starts the student's nodes inside the sandbox. `variants`: a variant
+    table file to use instead of the textbook's."""
     mod = LAB_MODULES[lab]
     report = os.path.join(work, 'report.json')
     env = dict(env)
     env['GRADING_REPORT'] = report
+    env.pop(VARIANTS_ENV, None)
+    if variants:
+        env[VARIANTS_ENV] = write_variants(lab, variants, work)
     if box is not None:
         env['GRADING_SANDBOX'] = box.to_json()
         env.pop('DISPLAY', None)   # the grading's network namespace cannot reach the user's X server
@@ -98,10 +115,12 @@ def save_logs(work, dest):
                     pass
 
 
-def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, hide=(), logs=None):
+def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, hide=(), logs=None,
+          variants=None):
     """Returns the list of criteria (package criterion first). `sandboxed`: the student's
     build and nodes run in the grading sandbox (grading.sandbox); `hide`: more folders of the
-    course tree the sandbox must not see (other submissions)."""
+    course tree the sandbox must not see (other submissions); `variants`: a variant table file
+    instead of the textbook's."""
     mod = LAB_MODULES[lab]
     pkg_c = package_criterion()
     work = tempfile.mkdtemp(prefix='grade-%s-%s-' % (lab, isu))
@@ -130,7 +149,7 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, h
             return [pkg_c] + lab_criteria(mod, reason('не проверено: ' + e.reason['ru'],
                                                       'not checked: ' + e.reason['en']))
         print('[grade] running the %s checker (rostest, time limit %d s)' % (lab, timeout), file=out, flush=True)
-        crits, log, timed_out = run_checker(lab, isu, run_env, work, timeout, box=box)
+        crits, log, timed_out = run_checker(lab, isu, run_env, work, timeout, box=box, variants=variants)
         if crits is None:
             crash = checker_crash(work)
             if timed_out:
@@ -158,7 +177,10 @@ def main(argv=None):
     ap.add_argument('lab', help='lab1, lab2, lab3 or lab4')
     ap.add_argument('--isu', required=True, help='your ISU id (digits); its last digit is the variant')
     ap.add_argument('--repo', default='.', help='folder with your lab repository (default: .)')
-    ap.add_argument('--junit', help='JUnit XML output (default: ./grade-LAB-ISU.xml)')
+    ap.add_argument('--junit', help='also write the criteria as JUnit XML to this file')
+    ap.add_argument('--variants', metavar='FILE',
+                    help='variant table to grade by instead of the textbook\'s labs/LAB/variants.yaml '
+                         '(same format; for an instructor\'s corrected table)')
     ap.add_argument('--timeout', type=float, help='time limit of the checker run, s')
     ap.add_argument('--keep', action='store_true', help='keep the temporary work dir (logs)')
     ap.add_argument('--no-sandbox', action='store_true',
@@ -178,7 +200,10 @@ def main(argv=None):
         timeout = args.timeout or mod.DEFAULT_TIMEOUT
         if timeout <= 0:
             raise GradeError('--timeout must be positive, got %s' % args.timeout)
-        junit = args.junit or 'grade-%s-%s.xml' % (args.lab, isu)
+        variants = None
+        if args.variants:
+            variants = os.path.abspath(args.variants)
+            load_variants(args.lab, variants)   # a bad table stops here, before any build
         sandboxed, note = not args.no_sandbox, None
         if sandboxed:
             why = sandbox.probe()
@@ -191,8 +216,10 @@ def main(argv=None):
         if args.no_sandbox:
             note = 'self-check: graded with --no-sandbox'
         t0 = time.monotonic()
+        if variants:
+            print('[grade] variant table: %s (--variants), not the textbook\'s' % variants, flush=True)
         crits = grade(args.lab, isu, repo, timeout, keep=args.keep, sandboxed=sandboxed,
-                      hide=[os.path.abspath(h) for h in args.hide], logs=args.logs)
+                      hide=[os.path.abspath(h) for h in args.hide], logs=args.logs, variants=variants)
     except GradeError as e:
         print('labs/grade: error: %s' % e, file=sys.stderr)
         return 2
@@ -202,10 +229,13 @@ def main(argv=None):
     finally:
         course_testing.reap_orphans()   # nothing of the student's run outlives the grader
     print(format_report(args.lab, isu, crits, note=note))
-    write_junit(junit, args.lab, isu, crits, time.monotonic() - t0, note=note)
+    if args.junit:
+        os.makedirs(os.path.dirname(os.path.abspath(args.junit)), exist_ok=True)
+        write_junit(args.junit, args.lab, isu, crits, time.monotonic() - t0, note=note, variants=variants)
     if args.json:
         with open(args.json, 'w') as f:
             json.dump({'lab': args.lab, 'isu': isu, 'sandboxed': sandboxed, 'note': note,
                        'criteria': [c.to_dict() for c in crits]}, f, ensure_ascii=False, indent=1)
-    print('[grade] JUnit report: %s' % os.path.abspath(junit))
+    if args.junit:
+        print('[grade] JUnit report: %s' % os.path.abspath(args.junit))
     return 0 if all(c.passed for c in crits) else 1

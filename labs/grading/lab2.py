@@ -44,8 +44,18 @@ CRITERIA = [
 ]
 
 
-def points(isu):
+def printed_points(isu):
+    """The variant's row as the table prints it, repeated cells included."""
     return [tuple(float(c) for c in p) for p in variant('lab2', isu)['points']]
+
+
+def points(isu):
+    """The distinct points of the variant's row, in printed order: each must be visited."""
+    out = []
+    for q in printed_points(isu):
+        if q not in out:
+            out.append(q)
+    return out
 
 
 def namespaces(isu):
@@ -153,6 +163,34 @@ def visits(path, pts, tol):
     return out
 
 
+def arrivals(path, q, tol, leave=None):
+    """Times the path arrives within tol of q, each after having left it (farther than
+    `leave`, default 2 * tol) since the previous arrival."""
+    leave = 2 * tol if leave is None else leave
+    out, away = [], True
+    for p in path:
+        d = math.hypot(p[1] - q[0], p[2] - q[1])
+        if away and d <= tol:
+            out.append(p[0])
+            away = False
+        elif d > leave:
+            away = True
+    return out
+
+
+def row_time(path, row, tol):
+    """When the path has visited the row as printed, a point printed k times being arrived at
+    k separate times (the reading of a repeated cell as one more visit); None if it never has."""
+    done = 0.0
+    for q in set(row):
+        times = arrivals(path, q, tol)
+        k = row.count(q)
+        if len(times) < k:
+            return None
+        done = max(done, times[k - 1])
+    return done
+
+
 def densify(path, step=0.05):
     pts = []
     for a, b in zip(path, path[1:]):
@@ -220,6 +258,7 @@ def evaluate(obs):
     isu = obs['isu']
     ns1, ns2 = namespaces(isu)
     pts = points(isu)
+    row = printed_points(isu)
     c = {i: _crit(i) for i in '123456'}
     pubs, subs, srvs = obs.get('pubs', {}), obs.get('subs', {}), obs.get('srvs', {})
     p1, p2 = obs.get('pose1', []), obs.get('pose2', [])
@@ -264,6 +303,9 @@ def evaluate(obs):
     named = sorted(t for t in results if t.endswith('/result_' + isu))
     got = [(t, s[-1][1]) for t, s in sorted(results.items()) if t in named and s]
     observed = (t_done - t_start) if t_done is not None else None
+    # a row printing a point twice also reads "visit it again": the time to that arrival passes too
+    t_row = row_time(p1, row, POINT_TOL) if (t_done is not None and len(row) > len(pts)) else None
+    again = (t_row - t_start) if t_row is not None and t_row > t_done else None
     if not named:
         c['3'].set(False, reason('нет топика, оканчивающегося на result_%s' % isu, 'no topic ending in result_%s' % isu))
     elif not got:
@@ -274,13 +316,24 @@ def evaluate(obs):
     else:
         topic, reported = got[0]
         tol = TIME_ABS_TOL + TIME_REL_TOL * observed
-        if abs(reported - observed) > tol:
-            c['3'].set(False, reason('в %s %.2f с, а измерено %.2f с (допуск ±%.1f с; время измеряется от первого движения черепахи 1 до последней точки)' % (topic, reported, observed, tol),
-                                     '%s says %.2f s, measured %.2f s (tolerance ±%.1f s; timed from turtle 1\'s first motion to the last point)' % (topic, reported, observed, tol)))
+        rep = [q for q in pts if row.count(q) > 1]
+        rep_txt = ', '.join(fmt_pt(q) for q in rep)
+        match, by_row = (observed if abs(reported - observed) <= tol else None), False
+        if match is None and again is not None and abs(reported - again) <= TIME_ABS_TOL + TIME_REL_TOL * again:
+            match, by_row = again, True
+        if match is None:
+            also_ru = also_en = ''
+            if again is not None:
+                also_ru = ' или %.2f с до повторного заезда в %s (строка, как напечатана)' % (again, rep_txt)
+                also_en = ' or %.2f s to the repeated %s again (the row as printed)' % (again, rep_txt)
+            c['3'].set(False, reason('в %s %.2f с, а измерено %.2f с%s (допуск ±%.1f с; время измеряется от первого движения черепахи 1 до последней точки)' % (topic, reported, observed, also_ru, tol),
+                                     '%s says %.2f s, measured %.2f s%s (tolerance ±%.1f s; timed from turtle 1\'s first motion to the last point)' % (topic, reported, observed, also_en, tol)))
         else:
-            c['3'].set(True, reason('%s: %.2f с, измерено %.2f с' % (topic, reported, observed),
-                                    '%s: %.2f s, measured %.2f s' % (topic, reported, observed)),
-                       reported=reported, observed=observed)
+            how_ru = ' (до повторного заезда в %s, строка как напечатана)' % rep_txt if by_row else ''
+            how_en = ' (to the repeated %s again, the row as printed)' % rep_txt if by_row else ''
+            c['3'].set(True, reason('%s: %.2f с, измерено %.2f с%s' % (topic, reported, match, how_ru),
+                                    '%s: %.2f s, measured %.2f s%s' % (topic, reported, match, how_en)),
+                       reported=reported, observed=match)
 
     # 4. turtle 2 follows
     cmd2 = ns2 + '/turtle1/cmd_vel'

@@ -12,7 +12,10 @@ Definitions (also in labs/lab3/README.md):
             a sphere collision on any joint (a caster, code S);
   arm       every other movable joint (mimic joints aside), which must form one serial chain;
             read from the body outwards;
-  links     every link except wheel/caster links and their subtrees.
+  links     the table's "Кол-во звеньев" passes in either reading: every <link> of the URDF
+            (the book's count: a URDF is links joined by joints, wheels and base included) or
+            every link except wheel/caster links and their subtrees (the only reading in which
+            variants 1, 3, 5 and 6 can be built).
 """
 import math
 import os
@@ -40,7 +43,8 @@ RVIZ_NEEDED = (('rviz/RobotModel', 'RobotModel'), ('rviz/TF', 'TF'))
 CRITERIA = [
     ('1', 'urdf/my_robots_super_model.xacro раскрывается xacro и проходит check_urdf',
      'urdf/my_robots_super_model.xacro expands with xacro and passes check_urdf'),
-    ('2', 'Число звеньев (без колёс) по варианту', 'Number of links (wheels aside) matches the variant'),
+    ('2', 'Число звеньев по варианту (все звенья URDF или без колёс)',
+     'Number of links matches the variant (every URDF link, or wheels aside)'),
     ('3', 'Типы шарниров манипулятора по варианту', 'Manipulator joint types match the variant'),
     ('4', 'Колёсные шарниры (число и тип) по варианту', 'Wheel joints (number and type) match the variant'),
     ('5', 'Габариты корпуса по варианту (±5 мм)', 'Body size matches the variant (±5 mm)'),
@@ -414,12 +418,16 @@ def evaluate(obs):
     else:
         # 2. links
         n = len(an['links'])
+        total = len(model['links'])
         lst = ', '.join(an['links'])
-        if n != want['links']:
-            c['2'].set(False, _both('звеньев без колёс %d (%s), а в варианте %d' % (n, lst, want['links']),
-                                    '%d links without wheels (%s), the variant wants %d' % (n, lst, want['links'])))
-        else:
+        if total == want['links']:
+            c['2'].set(True, _both('%d звеньев в модели (все <link>, как считает учебник): %s' % (total, ', '.join(sorted(model['links']))),
+                                   '%d links in the model (every <link>, as the book counts): %s' % (total, ', '.join(sorted(model['links'])))))
+        elif n == want['links']:
             c['2'].set(True, _both('%d звеньев без колёс: %s' % (n, lst), '%d links without wheels: %s' % (n, lst)))
+        else:
+            c['2'].set(False, _both('в модели %d звеньев (все <link>), без колёс %d (%s), а в варианте %d — годится любой из двух счётов' % (total, n, lst, want['links']),
+                                    'the model has %d links (every <link>), %d without wheels (%s); the variant wants %d in either count' % (total, n, lst, want['links'])))
         # 3. manipulator
         desc = ', '.join('%s %s' % (j, model['joints'][j]['type']) for j in an['arm']) or 'none'
         if an['branch']:

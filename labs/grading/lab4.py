@@ -13,6 +13,13 @@ Definitions (also in labs/lab4/README.md):
   light           a <light> or an include of model://sun;  ground: model://ground_plane or a
                   model with a <plane> geometry;  gravity: a <gravity> element, z < 0;
   wheel           a continuous joint whose child link has a cylinder collision;
+  by velocity     a running controller that commands the wheel's velocity claims it: by type
+                  velocity_controllers/JointVelocityController or JointGroupVelocityController,
+                  effort_controllers/JointVelocityController (the book's §12.4: a velocity PID
+                  on the EffortJointInterface), diff_drive_controller and the other drive
+                  controllers of ros_controllers; a position, trajectory or effort controller
+                  does not, whatever its interface; a type unknown here counts when it claims
+                  the wheel under VelocityJointInterface;
   collision       a scene object displaced by more than 3 cm (or turned by more than 0.1 rad)
                   during the run, or the robot tipped (roll or pitch above 0.35 rad).
 """
@@ -60,6 +67,32 @@ CRITERIA = [
      'Purposeful motion: no spinning in place, no oscillation'),
     ('9', 'Нет столкновений с объектами сцены', 'No collision with the scene'),
 ]
+
+
+# controllers of ros_controllers whose command to a wheel is a velocity (drive controllers
+# turn a twist into wheel velocities)
+DRIVE_CONTROLLERS = ('diff_drive_controller/DiffDriveController',
+                     'four_wheel_steering_controller/FourWheelSteeringController',
+                     'ackermann_steering_controller/AckermannSteeringController')
+NOT_VELOCITY = ('Position', 'Trajectory', 'Gripper')   # what these controllers command
+
+
+def commands_velocity(ctype, iface):
+    """(True/False, what the controller commands) for a controller of type `ctype` that claims
+    a joint under hardware interface `iface`."""
+    cls = (ctype or '').split('/')[-1]
+    if ctype in DRIVE_CONTROLLERS:
+        return True, 'velocity'
+    for word in NOT_VELOCITY:
+        if word in cls:
+            return False, word.lower()
+    if 'Velocity' in cls:
+        return True, 'velocity'
+    if 'Effort' in cls:
+        return False, 'effort'
+    if (iface or '').endswith('VelocityJointInterface'):
+        return True, 'velocity'
+    return False, 'a type the grader does not know, under %s' % (iface or 'no interface').split('::')[-1]
 
 
 class SceneError(Exception):
@@ -352,14 +385,20 @@ def evaluate(obs):
                                  'no controller_manager, or it loaded no controller, within %.0f s (wall clock)%s' % (STARTUP_LIMIT, sfx_en)))
     else:
         not_running = ['%s (%s)' % (n, d['state']) for n, d in sorted(ctrls.items()) if d['state'] != 'running']
-        by_vel = set()
-        for n, d in ctrls.items():
+        by_vel, other = set(), {}
+        for n, d in sorted(ctrls.items()):
             if d['state'] == 'running':
                 for iface, res in d['claimed']:
-                    if iface.endswith('VelocityJointInterface'):
-                        by_vel.update(res)
+                    ok, what = commands_velocity(d.get('type'), iface)
+                    for r in res:
+                        if ok:
+                            by_vel.add(r)
+                        else:
+                            other.setdefault(r, '%s (%s, %s)' % (n, d.get('type'), what))
         wheels = wheel_joints(model) if model else []
         missing = [j for j in wheels if j not in by_vel]
+        miss_txt = ', '.join('%s by %s' % (j, other[j]) if j in other else '%s by no running controller' % j
+                             for j in missing)
         names = ', '.join('%s %s' % (n, d['type']) for n, d in sorted(ctrls.items()))
         if not_running:
             c['5'].set(False, reason('контроллеры не запущены: %s' % ', '.join(not_running),
@@ -368,8 +407,9 @@ def evaluate(obs):
             c['5'].set(False, reason('в описании робота нет колёс (continuous-шарниров с цилиндром)',
                                      'the robot description has no wheels (continuous joints with a cylinder collision)'))
         elif missing:
-            c['5'].set(False, reason('колёса %s не управляются по скорости (VelocityJointInterface) запущенным контроллером' % ', '.join(missing),
-                                     'wheels %s are not claimed under VelocityJointInterface by a running controller' % ', '.join(missing)))
+            vel_ru = miss_txt.replace(' by no running controller', ': нет запущенного контроллера').replace(' by ', ': ')
+            c['5'].set(False, reason('колёса управляются не по скорости: %s; нужен контроллер скорости (velocity_controllers, effort_controllers/JointVelocityController, diff_drive_controller)' % vel_ru,
+                                     'wheels not controlled by velocity: %s; a velocity controller is needed (velocity_controllers, effort_controllers/JointVelocityController, diff_drive_controller)' % miss_txt))
         else:
             c['5'].set(True, reason('%s; колёса %s по скорости' % (names, ', '.join(wheels)),
                                     '%s; wheels %s by velocity' % (names, ', '.join(wheels))))

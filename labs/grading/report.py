@@ -31,13 +31,18 @@ def xml_text(text):
     return ''.join(ch for ch in text if ch >= ' ' or ch in '\t\n')
 
 
-def write_junit(path, lab, isu, criteria, elapsed=0.0, note=None):
+def write_junit(path, lab, isu, criteria, elapsed=0.0, note=None, variants=None):
+    """`note`: a self-check run (no sandbox); `variants`: the variant table file, when it is
+    not the textbook's."""
     failures = sum(1 for c in criteria if not c.passed)
     suite = ET.Element('testsuite', name='%s-%s%s' % (lab, isu, '-self-check' if note else ''),
                        tests=str(len(criteria)), failures=str(failures), errors='0', time='%.1f' % elapsed)
-    if note:
+    if note or variants:
         props = ET.SubElement(suite, 'properties')
-        ET.SubElement(props, 'property', name='self-check', value=note)
+        if note:
+            ET.SubElement(props, 'property', name='self-check', value=note)
+        if variants:
+            ET.SubElement(props, 'property', name='variants', value=variants)
     for c in criteria:
         case = ET.SubElement(suite, 'testcase', classname='%s.variant%s' % (lab, isu[-1]),
                              name='%s_%s' % (c.id, re.sub(r'[^a-z0-9]+', '_', c.title_en.lower()).strip('_')[:60]))

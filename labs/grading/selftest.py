@@ -50,13 +50,16 @@ def run_grade(lab, isu, repo, workdir, timeout=None, args=()):
 
 def run_cases(lab, cases, root, workers=2, args=()):
     """cases: {name: (isu, make_repo kwargs)} -> {name: run_grade result}, run in parallel;
-    `args`: more labs/grade options (e.g. --no-sandbox)."""
+    `args`: more labs/grade options (e.g. --no-sandbox) for every case; a case's own options
+    go in its kwargs as 'args'."""
     def one(item):
         name, (isu, kw) = item
+        kw = dict(kw)
+        more = list(kw.pop('args', ()))
         d = os.path.join(root, name)
         os.makedirs(d)
         repo = make_repo(d, lab, **kw)
-        return name, run_grade(lab, isu, repo, d, args=args)
+        return name, run_grade(lab, isu, repo, d, args=list(args) + more)
     with ThreadPoolExecutor(workers) as ex:
         return dict(ex.map(one, sorted(cases.items())))
 

@@ -29,12 +29,22 @@ CASES = {
     # session of its own: the grade still ends and nothing of it survives
     'stubborn_node': ('123456', {'edits': [('scripts/node2.py', '    main(2)\n', STUBBORN)]}),
     'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<', '<name>my_robot_controler<')]}),
+    # table 9.1 prints "+" for digit 5 (the reference follows the page); "*" is read there too
+    'v5_printed_plus': ('123455', {}),
+    'v5_read_as_times': ('123455', {'edits': [('src/my_robot_controller/numbers.py', "5: (2, '+')", "5: (2, '*')")]}),
+    # an instructor's table (--variants) where digit 5 is "*" only: the printed "+" now fails
+    'v5_table_times_only': ('123455', {}),
 }
+TIMES_ONLY = 'variants:\n' + ''.join("  %d: {operation: '%s', compute: node%d}\n" % (d, op, n) for d, op, n in zip(
+    range(10), '+++***---/', (3, 1, 2, 3, 1, 2, 3, 1, 2, 1)))
 
 
 @pytest.fixture(scope='module')
 def runs(tmp_path_factory):
-    return run_cases('lab1', CASES, str(tmp_path_factory.mktemp('lab1')), workers=3)
+    root = tmp_path_factory.mktemp('lab1')
+    (root / 'times_only.yaml').write_text(TIMES_ONLY)
+    cases = dict(CASES, v5_table_times_only=('123455', {'args': ['--variants', str(root / 'times_only.yaml')]}))
+    return run_cases('lab1', cases, str(root / 'runs'), workers=3)
 
 
 @pytest.mark.parametrize('name', ['ref_minus_node3', 'ref_div_node1'])
@@ -42,6 +52,20 @@ def test_reference_passes(runs, name):
     rc, out, crits = crit(runs, name)
     assert rc == 0, out
     assert sorted(crits) == ['0', '1', '2', '3', '4'] and all(p for p, _ in crits.values()), out
+
+
+@pytest.mark.parametrize('name,formula', [('v5_printed_plus', 'node1 + node3'), ('v5_read_as_times', 'node1 * node3')])
+def test_digit_5_either_reading_passes(runs, name, formula):
+    rc, out, crits = crit(runs, name)
+    assert rc == 0 and not failed(crits), out
+    assert formula in crits['3'][1], out
+
+
+def test_variants_file_is_used(runs):
+    rc, out, crits = crit(runs, 'v5_table_times_only')
+    assert rc == 1 and failed(crits) == ['3'], out
+    assert 'but node1 * node3 = ' in crits['3'][1] and 'reads two ways' not in crits['3'][1], out
+    assert 'variant table: ' in out and 'times_only.yaml (--variants)' in out
 
 
 def test_wrong_operation(runs):

@@ -158,3 +158,21 @@ def test_evaluate_variant_1():
                          'launch': {'error': 'launch/lab3_setup.launch not found in package my_firts_robot_model'}})
     assert [c.passed for c in bad] == [False] * 7
     assert bad[0].reason['en'] == 'xacro: Undefined property x' and 'not checked' in bad[1].reason['en']
+
+
+def test_links_pass_in_either_count():
+    """Table 11.1's "Кол-во звеньев": every <link> (the book's count) or the links without wheels."""
+    arm = [link('a1'), joint('j1', 'prismatic', 'base_link', 'a1'), link('a2'), joint('j2', 'revolute', 'a1', 'a2'),
+           link('a3'), joint('j3', 'revolute', 'a2', 'a3')]
+    obs = dict(obs_for(robot(*base(), *arm)), isu='1232')            # variant 2: 6 links, PRR, CC
+    c2 = lab3.evaluate(obs)[1]
+    assert c2.passed and c2.reason['en'].startswith('6 links in the model (every <link>, as the book counts)'), c2.reason
+    helpers = [link('mount'), joint('m_j', 'fixed', 'base_link', 'mount'), link('grip'), joint('g_j', 'fixed', 'a3', 'grip')]
+    obs = dict(obs_for(robot(*base(), *arm, *helpers)), isu='1232')  # 8 links, 6 without the wheels
+    c2 = lab3.evaluate(obs)[1]
+    assert c2.passed and c2.reason['en'].startswith('6 links without wheels'), c2.reason
+    obs = dict(obs_for(robot(*base(), *arm[:4])), isu='1232')         # 5 links, 3 without the wheels
+    c2 = lab3.evaluate(obs)[1]
+    assert not c2.passed
+    assert c2.reason['en'] == ('the model has 5 links (every <link>), 3 without wheels (a1, a2, base_link); '
+                               'the variant wants 6 in either count')

@@ -100,3 +100,60 @@ def test_evaluate_short_run_says_wall_clock():
     crits = {c.id: c for c in lab4.evaluate(obs(pts))}
     assert not crits['7'].passed
     assert 'only 10.0 s of sim time passed within 240 s of wall clock' in crits['7'].reason['en']
+
+
+def ctrl(ctype, iface, joints=('wheel_left_joint', 'wheel_right_joint'), state='running'):
+    return {'state': state, 'type': ctype, 'claimed': [('hardware_interface::' + iface, list(joints))]}
+
+
+WHEEL = ('<link name="wheel_{s}"><collision><geometry><cylinder radius="0.05" length="0.025"/></geometry></collision></link>'
+         '<joint name="wheel_{s}_joint" type="continuous"><parent link="base_link"/><child link="wheel_{s}"/></joint>')
+ROBOT = ('<robot name="bot"><link name="base_link"><collision><geometry><box size="0.2 0.14 0.09"/></geometry></collision></link>'
+         + WHEEL.format(s='left') + WHEEL.format(s='right') + '</robot>')
+
+
+def crit5(controllers):
+    desc = ROBOT
+    o = obs([(t * 0.1, 0.05 * t, 0.0, 0.0) for t in range(401)], robot_description=desc,
+            controllers=dict(controllers, joint_state_controller=ctrl('joint_state_controller/JointStateController',
+                                                                     'JointStateInterface', ())))
+    return {c.id: c for c in lab4.evaluate(o)}['5']
+
+
+@pytest.mark.parametrize('ctype,iface', [
+    ('effort_controllers/JointVelocityController', 'EffortJointInterface'),     # the book's §12.4
+    ('velocity_controllers/JointVelocityController', 'VelocityJointInterface'),
+    ('velocity_controllers/JointGroupVelocityController', 'VelocityJointInterface'),
+    ('diff_drive_controller/DiffDriveController', 'VelocityJointInterface'),
+    ('my_pkg/MyWheelController', 'VelocityJointInterface'),                     # unknown type: by interface
+])
+def test_wheels_by_velocity_pass(ctype, iface):
+    if 'Group' in ctype or 'DiffDrive' in ctype or 'My' in ctype:
+        c = crit5({'wheels': ctrl(ctype, iface)})
+    else:
+        c = crit5({'left': ctrl(ctype, iface, ['wheel_left_joint']), 'right': ctrl(ctype, iface, ['wheel_right_joint'])})
+    assert c.passed, c.reason['en']
+    assert 'wheels wheel_left_joint, wheel_right_joint by velocity' in c.reason['en']
+
+
+@pytest.mark.parametrize('ctype,iface,what', [
+    ('effort_controllers/JointPositionController', 'EffortJointInterface', 'position'),    # PW5's position control
+    ('velocity_controllers/JointPositionController', 'VelocityJointInterface', 'position'),
+    ('position_controllers/JointGroupPositionController', 'PositionJointInterface', 'position'),
+    ('velocity_controllers/JointTrajectoryController', 'VelocityJointInterface', 'trajectory'),
+    ('effort_controllers/JointEffortController', 'EffortJointInterface', 'effort'),
+    ('my_pkg/MyWheelController', 'EffortJointInterface', 'a type the grader does not know, under EffortJointInterface'),
+])
+def test_wheels_by_position_or_effort_fail(ctype, iface, what):
+    c = crit5({'wheels': ctrl(ctype, iface)})
+    assert not c.passed
+    assert c.reason['en'].startswith('wheels not controlled by velocity: wheel_left_joint by wheels (%s, %s), '
+                                     'wheel_right_joint by wheels (%s, %s); a velocity controller is needed'
+                                     % (ctype, what, ctype, what)), c.reason['en']
+
+
+def test_one_wheel_without_controller():
+    c = crit5({'left': ctrl('effort_controllers/JointVelocityController', 'EffortJointInterface', ['wheel_left_joint'])})
+    assert not c.passed and 'wheel_right_joint by no running controller' in c.reason['en']
+    stopped = crit5({'wheels': ctrl('diff_drive_controller/DiffDriveController', 'VelocityJointInterface', state='stopped')})
+    assert not stopped.passed and 'controllers not running: wheels (stopped)' in stopped.reason['en']

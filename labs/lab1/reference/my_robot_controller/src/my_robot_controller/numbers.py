@@ -5,9 +5,10 @@ import sys
 import rospy
 from std_msgs.msg import Float64
 
-# digit -> (computing node index, operation); textbook table 9.1 (digit 5 read as '*')
+# digit -> (computing node index, operation); textbook table 9.1 as printed (digit 5 prints '+';
+# the grader takes '*' there too, see labs/lab1/variants.yaml)
 VARIANTS = {0: (3, '+'), 1: (1, '+'), 2: (2, '+'), 3: (3, '*'), 4: (1, '*'),
-            5: (2, '*'), 6: (3, '-'), 7: (1, '-'), 8: (2, '-'), 9: (1, '/')}
+            5: (2, '+'), 6: (3, '-'), 7: (1, '-'), 8: (2, '-'), 9: (1, '/')}
 RATE = 2.0   # Hz, numbers and results
 
 

@@ -2,12 +2,13 @@
 import math
 import re
 
-# last ISU digit -> points (x, y) turtle 1 visits (labs/lab2/variants.yaml)
+# last ISU digit -> the distinct points (x, y) turtle 1 visits: textbook table 10.1 as printed
+# (labs/lab2/variants.yaml; rows 7, 8, 9, 0 print a point twice, visited once here)
 POINTS = {
     1: [(2, 3), (4, 2), (7, 1)], 2: [(2, 3), (4, 2)], 3: [(2, 3), (7, 1), (8, 4)],
     4: [(4, 2), (8, 4)], 5: [(2, 3), (7, 1), (8, 4)], 6: [(4, 2), (7, 1)],
-    7: [(2, 3), (5, 4)], 8: [(7, 1), (5, 4)], 9: [(2, 3), (4, 2), (7, 1), (5, 4)],
-    0: [(2, 3), (4, 2), (7, 1), (5, 4)],
+    7: [(2, 3), (5, 4)], 8: [(7, 1), (5, 4)], 9: [(2, 3), (4, 2), (7, 1)],
+    0: [(2, 3), (4, 2), (7, 1)],
 }
 V_MAX = 2.5         # m/s
 W_MAX = 5.0         # rad/s
