@@ -9,7 +9,8 @@ import pytest
 
 from ode_sim.description import sdf
 from ode_sim.description.mesh import load_mesh
-from ode_sim.description.model import Inertial, Link, Collision, Geometry, Model, ModelError, Surface
+from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, ModelError,
+                                       Surface)
 from ode_sim.description.resolve import ModelPaths
 from ode_sim.description.transforms import Pose
 from ode_sim.engine.physics import PhysicsWorld

@@ -1,14 +1,15 @@
 """SDF elements below a model: geometry, surface, material, sensors and plugins, inertial,
 links and joints (the description data model, model.py). Errors: ModelError `FILE:LINE: what`."""
 import math
+import os
 import xml.etree.ElementTree as ET
 
 import numpy as np
 
-from ode_sim.description import materials
+from ode_sim.description import materials, ogre
 from ode_sim.description.mesh import load_mesh
-from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, ModelError,
-                                       Plugin, Sensor, Surface, Visual)
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Material,
+                                       ModelError, Plugin, Sensor, Surface, Visual)
 from ode_sim.description.transforms import Pose
 from ode_sim.description.xmldoc import text_of
 
@@ -123,22 +124,80 @@ def parse_surface(ctx, surf_el, surface=None):
     return s
 
 
+_SCRIPTS = {}      # tuple of (script file, mtime) -> ogre.parse_scripts result
+
+
+def _scripts(files):
+    key = tuple((f, os.path.getmtime(f)) for f in files)
+    hit = _SCRIPTS.get(key)
+    if hit is None:
+        hit = _SCRIPTS[key] = ogre.parse_scripts(files)
+    return hit
+
+
 def parse_material(ctx, mat_el, visual):
-    """Set visual.color / material_name from an SDF <material>."""
+    """visual.color / material_name / material from an SDF <material>: an OGRE script named by
+    <script><uri>s and <name> (the .material files of the URIs' folders, then Gazebo's own
+    Gazebo/... names), then <ambient> <diffuse> <specular> <emissive> over it, as Gazebo
+    applies them. An unknown material or a missing texture: a warning, a plain colour."""
     if mat_el is None:
         return
     script = mat_el.find('script')
     name = text_of(script, 'name') if script is not None else None
     diffuse = ctx.color(mat_el, 'diffuse', None)
     ambient = ctx.color(mat_el, 'ambient', None)
+    specular = ctx.color(mat_el, 'specular', None)
+    emissive = ctx.color(mat_el, 'emissive', None)
+    mat = None
+    if name:
+        dirs = []
+        for u in script.findall('uri'):
+            uri = (u.text or '').strip()
+            if not uri or uri.startswith('file://media/') or uri.startswith('__default__'):
+                continue                       # Gazebo's own media: the built-in table below
+            try:
+                dirs.append(ctx.paths.resolve_uri(uri, ctx.base_dir))
+            except ModelError as e:
+                ctx.warn(u, '%s; material %r drawn in a plain colour' % (e, name))
+        broken = False
+        try:
+            found = _scripts(ogre.script_files(dirs)).get(name) if dirs else None
+        except ModelError as e:
+            ctx.warn(script, '%s; material %r drawn in a plain colour' % (e, name))
+            found, broken = None, True
+        if found is not None:
+            mat, warning = ogre.to_material(name, found[0], found[1], dirs)
+            if warning:
+                ctx.warn(script, warning)
+        else:
+            known = materials.is_known(name)
+            rgba = materials.material_color(
+                name, ctx.warnings if not (dirs or broken) else None, ctx.doc.where(script))
+            if not known and dirs and not broken:
+                ctx.warn(script, 'unknown material %r: not in %s nor one of Gazebo\'s '
+                         'Gazebo/... names; drawn grey' % (name, ', '.join(dirs)))
+            mat = Material(name=name, diffuse=rgba, source='gazebo.material')
+    if diffuse is not None or ambient is not None or specular is not None or \
+            emissive is not None:
+        mat = mat or Material(name='', diffuse=diffuse or ambient)
+        if diffuse is not None:
+            mat.diffuse = diffuse
+            mat.opacity = diffuse[3] if len(diffuse) > 3 else 1.0
+        if ambient is not None:
+            mat.ambient = ambient
+        if specular is not None:
+            mat.specular = tuple(specular[:3])
+        if emissive is not None:
+            mat.emissive = tuple(emissive[:3])
     if diffuse is not None:
         visual.color = diffuse
     elif ambient is not None:
         visual.color = ambient
-    elif name:
-        visual.color = materials.material_color(name, ctx.warnings, ctx.doc.where(script))
+    elif mat is not None:
+        visual.color = tuple(mat.diffuse)
     if name:
         visual.material_name = name
+    visual.material = mat
 
 
 # ------------------------------------------------------------------------------------------

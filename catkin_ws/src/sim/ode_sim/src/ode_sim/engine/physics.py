@@ -422,6 +422,7 @@ class PhysicsWorld:
                              link_pose=None if link.body is None else link.pose,
                              static_pose=link.pose() if link.body is None else Pose())
         inst.laser_retro = getattr(desc, 'laser_retro', 0.0)
+        inst.material = getattr(desc, 'material', None)
         return inst
 
 

@@ -19,20 +19,29 @@ depth camera plugin (gazebo_ros_openni_kinect) publishes such pixels as NaN in i
 depth image (everything outside (pointCloudCutoff, pointCloudCutoffMax)); the ROS-publishing
 layer maps inf to NaN, this module keeps inf so that comparisons stay meaningful.
 
-Lighting: scene ambient x colour, plus per light a Lambert term (light diffuse x colour) and a
-little Blinn-Phong specular; back faces are culled as in Gazebo (OGRE), so a camera inside its
-own link's box sees out of it (the textbook's camera sits inside a 5 cm cube with a 2 cm near
-clip); triangles are wound counter-clockwise seen from outside; no shadows, colours are opaque
-(alpha ignored).
+Lighting (OGRE's fixed-function pass as Gazebo uses it): scene ambient x material ambient, plus
+per light a Lambert term (light diffuse x material diffuse) and a Blinn-Phong specular (light
+specular x material specular), plus the material's emissive; a texture (the material's diffuse
+texture, OGRE's texture_unit) multiplies ambient and diffuse (colour_op modulate); back faces
+are culled as in Gazebo (OGRE), so a camera inside its own link's box sees out of it (the
+textbook's camera sits inside a 5 cm cube with a 2 cm near clip); triangles are wound
+counter-clockwise seen from outside; no shadows. A shape with only a colour (URDF, SDF
+<diffuse>) uses it as ambient and diffuse with a 0.2 specular. Materials with opacity < 1 are
+drawn after the opaque ones, blended. Mesh files' parts (description/mesh.py) are drawn with
+their own normals, texture coordinates and the file's materials unless the visual has its own
+material. Texture images are read with Pillow (one decode per file and version); one that
+cannot be read is drawn in its material's plain colour, with a warning on stderr.
 """
 import math
+import os
 import queue
+import sys
 import threading
 
 import numpy as np
 
 from ode_sim.description.model import ModelError
-from ode_sim.engine.tessellate import tessellate
+from ode_sim.engine.tessellate import tessellate, uv_of
 
 MAX_LIGHTS = 8
 SPECULAR = 0.2          # material specular factor
@@ -54,20 +63,51 @@ void main() {
 }
 """
 
+_VERTEX_SHADER_UV = """
+#version 330
+uniform mat4 u_viewproj;
+uniform mat4 u_model;
+uniform vec2 u_uvscale;
+in vec3 in_pos;
+in vec3 in_normal;
+in vec2 in_uv;
+out vec3 v_world;
+out vec3 v_normal;
+out vec2 v_uv;
+void main() {
+    vec4 w = u_model * vec4(in_pos, 1.0);
+    v_world = w.xyz;
+    v_normal = mat3(u_model) * in_normal;
+    v_uv = in_uv / u_uvscale;
+    gl_Position = u_viewproj * w;
+}
+"""
 
 
-def _fragment_shader(nlights):
+
+def _fragment_shader(nlights, textured=False):
     """Per-pixel lighting, the light loop unrolled for `nlights` lights and branch-free (a
-    loop over a uniform count with pow() costs llvmpipe ~3x as much)."""
-    head = ['#version 330', 'uniform vec4 u_color;', 'uniform vec3 u_ambient;']
+    loop over a uniform count with pow() costs llvmpipe ~3x as much); `textured`: the diffuse
+    texture multiplies the material's ambient and diffuse colours."""
+    head = ['#version 330', 'uniform vec4 u_color;', 'uniform vec3 u_ambient;',
+            'uniform vec3 u_mat_ambient;', 'uniform vec3 u_mat_specular;',
+            'uniform vec3 u_emissive;']
+    if textured:
+        head += ['uniform sampler2D u_tex;', 'in vec2 v_uv;']
     if nlights:
         head += ['uniform vec3 u_eye;',
                  # xyz: direction towards which the light shines (w = 0) or its position (w = 1)
                  'uniform vec4 u_light_vec[%d];' % nlights,
                  'uniform vec3 u_light_diffuse[%d];' % nlights,
                  'uniform vec3 u_light_specular[%d];' % nlights]
-    head += ['in vec3 v_world;', 'in vec3 v_normal;', 'out vec4 f_color;', 'void main() {',
-             '    vec3 base = u_color.rgb;', '    vec3 c = u_ambient * base;']
+    head += ['in vec3 v_world;', 'in vec3 v_normal;', 'out vec4 f_color;', 'void main() {']
+    if textured:
+        head += ['    vec3 tex = texture(u_tex, v_uv).rgb;',
+                 '    vec3 base = u_color.rgb * tex;',
+                 '    vec3 c = u_ambient * u_mat_ambient * tex + u_emissive;']
+    else:
+        head += ['    vec3 base = u_color.rgb;',
+                 '    vec3 c = u_ambient * u_mat_ambient + u_emissive;']
     if nlights:
         head += ['    vec3 view = normalize(u_eye - v_world);',
                  '    vec3 n = normalize(v_normal);',
@@ -81,14 +121,17 @@ def _fragment_shader(nlights):
                  '        float s = max(dot(n, normalize(l + view)), 0.0);',
                  '        ' + ' '.join(['s *= s;'] * squarings) + '   // s^%d' % 2 ** squarings,
                  '        c += d * u_light_diffuse[%d] * base' % i,
-                 '             + (d > 0.0 ? %f * s : 0.0) * u_light_specular[%d];' % (SPECULAR, i),
+                 '             + (d > 0.0 ? s : 0.0) * u_mat_specular * u_light_specular[%d];' % i,
                  '    }']
-    head += ['    f_color = vec4(min(c, vec3(1.0)), 1.0);', '}', '']
+    head += ['    f_color = vec4(min(c, vec3(1.0)), u_color.a);', '}', '']
     return '\n'.join(head)
 
 
 _ctx = None
-_programs = {}          # number of lights -> moderngl.Program
+_programs = {}          # (number of lights, textured) -> moderngl.Program
+_textures = {}          # (path, mtime) -> moderngl.Texture (GL thread), shared by renderers
+_texture_data = {}      # (path, mtime) -> RGBA uint8 array, bottom row first, or None
+_texture_warned = set()
 _gl_thread = None
 _gl_queue = queue.Queue()
 _gl_start = threading.Lock()
@@ -142,19 +185,62 @@ def _context():
     return _ctx
 
 
-def _program(nlights):
-    """The shader program for `nlights` lights (GL thread only)."""
-    prog = _programs.get(nlights)
+def _program(nlights, textured=False):
+    """The shader program for `nlights` lights, with a texture or not (GL thread only)."""
+    prog = _programs.get((nlights, textured))
     if prog is None:
         ctx = _context()
         try:
-            prog = ctx.program(vertex_shader=_VERTEX_SHADER,
-                               fragment_shader=_fragment_shader(nlights))
+            prog = ctx.program(vertex_shader=_VERTEX_SHADER_UV if textured else _VERTEX_SHADER,
+                               fragment_shader=_fragment_shader(nlights, textured))
         except Exception as e:  # noqa: BLE001
             raise ModelError('ode_sim.render: shader compilation failed on %s: %s'
                              % (ctx.info.get('GL_RENDERER', '?'), e)) from None
-        _programs[nlights] = prog
+        _programs[(nlights, textured)] = prog
     return prog
+
+
+def texture_image(path):
+    """(key, RGBA uint8 (h, w, 4) with the bottom row first, as GL wants it) of a texture
+    file, decoded once per version with Pillow; (None, None) with a warning on stderr (once per
+    file) when it cannot be read: the caller draws the plain colour."""
+    try:
+        key = (path, os.path.getmtime(path))
+    except OSError as e:
+        key, why = (path, None), e.strerror or str(e)
+    else:
+        if key in _texture_data:
+            return (key, _texture_data[key]) if _texture_data[key] is not None else (None, None)
+        why = None
+        try:
+            from PIL import Image
+            with Image.open(path) as im:
+                img = np.asarray(im.convert('RGBA'))[::-1].copy()
+            if img.size == 0:
+                raise ValueError('the image is empty')
+        except ImportError:
+            why = 'Pillow is not installed (Debian package python3-pil)'
+        except Exception as e:  # noqa: BLE001 - PIL raises many kinds
+            why = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
+        _texture_data[key] = None if why else img
+        if not why:
+            return key, img
+    if path not in _texture_warned:
+        _texture_warned.add(path)
+        sys.stderr.write('ode_sim.render: texture %s cannot be read (%s); drawn in its plain '
+                         'colour\n' % (path, why))
+    return None, None
+
+
+def _gl_texture(ctx, key, img):
+    tex = _textures.get(key)
+    if tex is None:
+        tex = ctx.texture((img.shape[1], img.shape[0]), 4, img.tobytes())
+        tex.build_mipmaps()
+        tex.filter = (ctx.LINEAR_MIPMAP_LINEAR, ctx.LINEAR)
+        tex.repeat_x = tex.repeat_y = True
+        _textures[key] = tex
+    return tex
 
 
 def gl_renderer():
@@ -234,7 +320,7 @@ class Renderer:
         self._proj = proj @ _CAM_TO_GL
         self._shapes = []
         self._meshes = {}                  # id(geometry) -> _Mesh
-        self._prog = None
+        self._progs = {}
         self._released = False
         self._color_rb = self._depth_rb = self._fbo = None
         _gl(self._gl_create)
@@ -255,8 +341,8 @@ class Renderer:
     def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1), background=(0.7, 0.7, 0.7, 1)):
         """Shapes (ShapeInstance visuals) and lights (model.Light) to draw from now on.
 
-        GPU meshes are cached per geometry object (by identity): calling again after models
-        were added or removed uploads only the new geometries and frees the unused ones.
+        GPU meshes are cached per geometry object (by identity) and part: calling again after
+        models were added or removed uploads only the new geometries and frees the unused ones.
         Only the first MAX_LIGHTS lights are used; point and spot lights shine from their
         position in all directions without falloff.
         """
@@ -281,33 +367,57 @@ class Renderer:
         # CPU side first (bad input raises before anything changes), then the upload
         draw, new = [], {}
         for sh in shapes:
-            key = id(sh.geometry)
             color = _check_color('%s: colour' % sh.key, sh.color)
-            old = self._meshes.get(key)
-            if key not in new and (old is None or old.geometry is not sh.geometry):
-                pos, nrm, idx = tessellate(sh.geometry, sh.key)
-                new[key] = (sh.geometry, np.concatenate([pos, nrm], axis=1).astype('f4'),
-                            idx.astype('u4'))
-            draw.append((sh, key, np.array(color + [1.0], dtype='f4').tobytes()))
+            own = getattr(sh, 'material', None)
+            g = sh.geometry
+            parts = g.parts if g.kind == 'mesh' and getattr(g, 'parts', None) else [None]
+            for index, part in enumerate(parts):
+                mat = own or (part.material if part is not None else None)
+                uniforms, tex_key, tex_img = _uniforms(sh.key, mat, color)
+                textured = tex_key is not None
+                key = (id(g), index, textured)
+                old = self._meshes.get(key)
+                if key not in new and (old is None or old.geometry is not g):
+                    if part is None:
+                        pos, nrm, idx = tessellate(g, sh.key)
+                        uv = uv_of(g, pos, nrm) if textured else None
+                    else:
+                        pos, nrm, idx = part.positions, part.normals, part.faces
+                        uv = part.uvs if textured else None
+                        if textured and uv is None:
+                            uv = np.zeros((len(pos), 2), dtype='f4')
+                    cols = [pos, nrm] + ([uv] if textured else [])
+                    new[key] = (g, np.concatenate(cols, axis=1).astype('f4'),
+                                np.asarray(idx).astype('u4'), textured)
+                draw.append((sh, key, uniforms, tex_key, tex_img))
         _gl(self._gl_set_scene, draw, new, lights_u)
         self._ambient, self._background, self._lights = amb, tuple(bg) + (1.0,), lights_u
 
     def _gl_set_scene(self, draw, new, lights_u):
         ctx = _context()
-        prog = _program(lights_u[0])
+        progs = {False: _program(lights_u[0], False), True: _program(lights_u[0], True)}
         keep = {}
-        for key, (geometry, data, idx) in new.items():
-            keep[key] = _Mesh(ctx, geometry, data, idx)
-        for _, key, _ in draw:
+        for key, (geometry, data, idx, textured) in new.items():
+            keep[key] = _Mesh(ctx, geometry, data, idx, textured)
+        for _, key, _, _, _ in draw:
             if key not in keep:
                 keep[key] = self._meshes[key]
         for key, mesh in self._meshes.items():
             if keep.get(key) is not mesh:
                 mesh.release()
         self._meshes = keep
-        self._prog = prog
-        self._shapes = [(sh, keep[key].vao(ctx, prog), col) for sh, key, col in draw
-                        if keep[key].count]
+        self._progs = progs
+        items = []
+        for sh, key, uniforms, tex_key, tex_img in draw:
+            mesh = keep[key]
+            if not mesh.count:
+                continue
+            textured = tex_key is not None
+            tex = _gl_texture(ctx, tex_key, tex_img) if textured else None
+            items.append((sh, mesh.vao(ctx, progs[textured]), uniforms, tex, textured))
+        # opaque plain, opaque textured, then the transparent ones (blended)
+        items.sort(key=lambda it: (it[2][-1] < 1.0, it[4]))
+        self._shapes = items
 
     # --------------------------------------------------------------- render
     def render(self, camera_pose):
@@ -317,32 +427,54 @@ class Renderer:
             raise ModelError('ode_sim.render: render() on a released Renderer')
         cam = camera_pose.matrix()
         viewproj = (self._proj @ np.linalg.inv(cam)).T.astype('f4').tobytes()  # column-major
-        models = [(s.world_pose().matrix().T.astype('f4').tobytes(), vao, col)
-                  for s, vao, col in self._shapes]
+        models = [(s.world_pose().matrix().T.astype('f4').tobytes(), vao, u, tex, textured)
+                  for s, vao, u, tex, textured in self._shapes]
         rgb = np.empty((self.height, self.width, 3), dtype=np.uint8)
         zbuf = np.empty((self.height, self.width), dtype=np.float32) if self.depth else None
         _gl(self._gl_render, viewproj, tuple(float(v) for v in cam[:3, 3]), models, rgb, zbuf)
         return rgb, (self._linear_depth(zbuf) if self.depth else None)
 
     def _gl_render(self, viewproj, eye, models, rgb, zbuf):
-        ctx, prog = _context(), self._prog
+        ctx = _context()
         self._fbo.use()
         ctx.enable_only(ctx.DEPTH_TEST | ctx.CULL_FACE)
         ctx.front_face = 'cw'          # the projection flips Y (image rows top first)
         self._fbo.clear(*self._background, depth=1.0)
-        prog['u_viewproj'].write(viewproj)
-        prog['u_ambient'].value = tuple(self._ambient)
         n, vec, dif, spe = self._lights
-        if n:
-            prog['u_eye'].value = eye
-            prog['u_light_vec'].write(vec)
-            prog['u_light_diffuse'].write(dif)
-            prog['u_light_specular'].write(spe)
-        u_model, u_color = prog['u_model'], prog['u_color']
-        for model, vao, col in models:
+        handles = {}
+        for textured, prog in self._progs.items():
+            prog['u_viewproj'].write(viewproj)
+            prog['u_ambient'].value = tuple(self._ambient)
+            if n:
+                prog['u_eye'].value = eye
+                prog['u_light_vec'].write(vec)
+                prog['u_light_diffuse'].write(dif)
+                prog['u_light_specular'].write(spe)
+            handles[textured] = tuple(prog.get(u, None) for u in (
+                'u_model', 'u_color', 'u_mat_ambient', 'u_mat_specular', 'u_emissive',
+                'u_uvscale'))
+        blending = False
+        for model, vao, (col, mamb, mspec, emis, uvs, alpha), tex, textured in models:
+            u_model, u_color, u_amb, u_spec, u_emis, u_uvs = handles[textured]
+            if alpha < 1.0 and not blending:
+                ctx.enable(ctx.BLEND)
+                ctx.blend_func = ctx.SRC_ALPHA, ctx.ONE_MINUS_SRC_ALPHA
+                blending = True
             u_model.write(model)
             u_color.write(col)
+            if u_amb is not None:
+                u_amb.write(mamb)
+            if u_spec is not None:
+                u_spec.write(mspec)
+            if u_emis is not None:
+                u_emis.write(emis)
+            if textured:
+                if u_uvs is not None:
+                    u_uvs.write(uvs)
+                tex.use(0)
             vao.render()
+        if blending:
+            ctx.disable(ctx.BLEND)
         self._fbo.read_into(rgb, components=3, alignment=1)
         if zbuf is not None:
             self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
@@ -387,13 +519,14 @@ class Renderer:
 
 
 class _Mesh:
-    """GPU buffers of one geometry and its vertex arrays, one per shader program."""
+    """GPU buffers of one geometry part and its vertex arrays, one per shader program."""
 
-    def __init__(self, ctx, geometry, data, idx):
+    def __init__(self, ctx, geometry, data, idx, textured=False):
         self.geometry = geometry
+        self.textured = textured
         self.count = len(idx)
         self.vbo = ctx.buffer(data.tobytes()) if self.count else None
-        self.ibo = ctx.buffer(idx.tobytes()) if self.count else None
+        self.ibo = ctx.buffer(np.ascontiguousarray(idx).tobytes()) if self.count else None
         self.vaos = {}
 
     def vao(self, ctx, prog):
@@ -401,10 +534,15 @@ class _Mesh:
         if vao is None:
             # a program that does not use the normals (depth only, no lights) has no in_normal:
             # skip those 12 bytes (moderngl >= 5.9, Debian 13, refuses an unknown attribute)
+            uv = ' 8x' if self.textured else ''
             if prog.get('in_normal', None) is None:
-                content = [(self.vbo, '3f 12x', 'in_pos')]
+                fmt, names = '3f 12x', ['in_pos']
             else:
-                content = [(self.vbo, '3f 3f', 'in_pos', 'in_normal')]
+                fmt, names = '3f 3f', ['in_pos', 'in_normal']
+            if self.textured:
+                if prog.get('in_uv', None) is not None:
+                    fmt, names, uv = fmt + ' 2f', names + ['in_uv'], ''
+            content = [(self.vbo, fmt + uv, *names)]
             vao = ctx.vertex_array(prog, content, self.ibo)
             self.vaos[id(prog)] = vao
         return vao
@@ -417,3 +555,28 @@ class _Mesh:
             if buf is not None:
                 buf.release()
         self.ibo = self.vbo = None
+
+
+def _uniforms(where, mat, color):
+    """((diffuse rgba, ambient rgb, specular rgb, emissive rgb, uv scale as f4 bytes, opacity),
+    texture key, texture image) of a material, or of a plain colour when `mat` is None."""
+    tex_key = tex_img = None
+    if mat is None:
+        diffuse = list(color) + [1.0]
+        ambient, specular, emissive, uvs = color, [SPECULAR] * 3, [0.0] * 3, (1.0, 1.0)
+    else:
+        d = _check_color('%s: material %r diffuse' % (where, mat.name), mat.diffuse)
+        opacity = float(mat.opacity)
+        if not 0.0 <= opacity <= 1.0:
+            opacity = 1.0
+        diffuse = d + [opacity]
+        ambient = d if mat.ambient is None else \
+            _check_color('%s: material %r ambient' % (where, mat.name), mat.ambient)
+        specular = _check_color('%s: material %r specular' % (where, mat.name), mat.specular)
+        emissive = _check_color('%s: material %r emissive' % (where, mat.name), mat.emissive)
+        uvs = tuple(float(v) for v in mat.uv_scale)
+        if mat.texture:
+            tex_key, tex_img = texture_image(mat.texture)
+    f4 = lambda v: np.array(v, dtype='f4').tobytes()  # noqa: E731
+    return (f4(diffuse), f4(ambient), f4(specular), f4(emissive), f4(uvs), diffuse[3]), \
+        tex_key, tex_img

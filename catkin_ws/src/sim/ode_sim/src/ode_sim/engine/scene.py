@@ -19,6 +19,7 @@ class ShapeInstance:
     link_pose: Optional[Callable[[], Pose]] = None   # current link pose in the world; None = static
     static_pose: Pose = field(default_factory=Pose)  # link pose in the world when static
     laser_retro: float = 0.0                   # collisions: <laser_retro>, the lidar intensity
+    material: Optional[object] = None          # visuals: model.Material of the visual, or None
 
     @property
     def static(self):

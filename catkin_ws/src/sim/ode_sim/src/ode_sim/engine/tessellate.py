@@ -157,3 +157,39 @@ def tessellate(geometry, where=''):
         raise ModelError('%s: %s' % (what, e)) from None
     raise ModelError('%s: unknown geometry kind %r (box, cylinder, sphere, plane, mesh)'
                      % (where or 'geometry', g.kind))
+
+
+def uv_of(geometry, pos, nrm):
+    """Texture coordinates (N, 2) float32 of a primitive's tessellated vertices, as a texture
+    looks on Gazebo's shapes: box sides upright (u to the right seen from outside, v up), top
+    and bottom u along x, v along y; cylinders and spheres wrapped around Z (u the azimuth, v
+    the height or latitude), cylinder caps and planes projected. A mesh without its own texture
+    coordinates (STL) gets (0, 0)."""
+    g = geometry
+    p = np.asarray(pos, dtype=float)
+    n = np.asarray(nrm, dtype=float)
+    uv = np.zeros((len(p), 2))
+    if g.kind == 'box':
+        sx, sy, sz = (float(v) for v in g.size)
+        side = np.abs(n[:, 2]) < 0.5
+        # seen from outside (looking along -n, Z up) the right is (-n) x Z = (-n_y, n_x, 0)
+        right = np.stack([-n[:, 1], n[:, 0], np.zeros(len(n))], axis=1)
+        half = np.array([sx, sy, sz]) / 2
+        u_side = (np.einsum('ij,ij->i', p, right) + np.abs(right) @ half) / \
+            np.maximum(2 * (np.abs(right) @ half), 1e-12)
+        uv[:, 0] = np.where(side, u_side, (p[:, 0] + sx / 2) / sx)
+        uv[:, 1] = np.where(side, (p[:, 2] + sz / 2) / sz, (p[:, 1] + sy / 2) / sy)
+    elif g.kind in ('cylinder', 'sphere'):
+        az = np.arctan2(p[:, 1], p[:, 0]) / (2 * math.pi) + 0.5
+        if g.kind == 'sphere':
+            uv[:, 0] = az
+            uv[:, 1] = 0.5 + np.arcsin(np.clip(p[:, 2] / g.radius, -1, 1)) / math.pi
+        else:
+            cap = np.abs(n[:, 2]) > 0.5
+            uv[:, 0] = np.where(cap, p[:, 0] / (2 * g.radius) + 0.5, az)
+            uv[:, 1] = np.where(cap, p[:, 1] / (2 * g.radius) + 0.5, p[:, 2] / g.length + 0.5)
+    elif g.kind == 'plane':
+        # plane(): corners (-1,-1) (1,-1) (1,1) (-1,1) of its in-plane axes, in that order
+        corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]
+        uv[:] = np.tile(corners, (len(p) // 4 + 1, 1))[:len(p)]
+    return np.ascontiguousarray(uv, dtype=np.float32)
