@@ -1,15 +1,29 @@
 // The one rosbridge connection (roslibjs, global ROSLIB) and small helpers the panels share.
+// rosbridge started by web.launch authenticates its clients (rosauth): before each connection
+// the page asks course_web_server (which it reached with its token) for a fresh `auth`
+// message, sent as the first op. Without /rosauth (another server) nothing is sent.
+async function freshAuth() {
+  try {
+    const r = await fetch('rosauth', { cache: 'no-store' });
+    return r.ok ? await r.json() : null;
+  } catch (e) { return null; }
+}
+
 export function connect(url, onState, onReconnect) {
   const ros = new ROSLIB.Ros();
   let everClosed = false;
+  let auth = null;
+  // registered first: goes out before anything the panels queued for the connection
+  ros.on('connection', () => { if (auth) ros.callOnConnection(auth); auth = null; });
   ros.on('connection', () => { onState('connected'); if (everClosed) onReconnect(); });
   ros.on('error', () => onState('error (is rosbridge running? roslaunch rosbridge_server rosbridge_websocket.launch)'));
+  const open = async () => { auth = await freshAuth(); ros.connect(url); };
   ros.on('close', () => {
     everClosed = true;
     onState('disconnected, retrying…');
-    setTimeout(() => ros.connect(url), 2000);
+    setTimeout(open, 2000);
   });
-  ros.connect(url);
+  open();
   return ros;
 }
 
