@@ -25,6 +25,7 @@ LAYOUT = {'version': 1, 'panels': [
     {'type': 'teleop', 'x': 520, 'y': 0, 'w': 300, 'h': 300, 'opts': {'topic': '/turtle1/cmd_vel'}},
     {'type': 'plot', 'x': 520, 'y': 305, 'w': 520, 'h': 265, 'opts': {'fields': ['/turtle1/pose/x']}},
 ]}
+TOKEN = 'c0ffee42' * 4                 # the page's token (web.launch token:=...)
 # added by the 3D test only (software WebGL is the page's costliest part)
 VIEW3D = ({'x': 1045, 'y': 0, 'w': 600, 'h': 570}, {'fixed': 'odom', 'distance': 1.2})
 
@@ -124,17 +125,23 @@ def stack(tmp_path_factory):
         env = T.ros_env(core)
         web, bridge = free_port(), free_port()
         launch = Proc(['roslaunch', os.path.join(HERE, 'browser.launch'), 'port:=%d' % web,
-                       'rosbridge_port:=%d' % bridge], env=env, log=os.path.join(tmp, 'launch.log'))
+                       'rosbridge_port:=%d' % bridge, 'token:=' + TOKEN,
+                       'secret_file:=' + os.path.join(tmp, 'secret')],
+                      env=env, log=os.path.join(tmp, 'launch.log'))
 
         def up():
             assert launch.alive(), 'browser.launch exited:\n' + launch.output()[-3000:]
             return _port_open(web) and _port_open(bridge)
         wait_for(up, 90, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
-        with urllib.request.urlopen('http://127.0.0.1:%d/vendor/roslib.min.js' % web, timeout=10) as r:
+        req = urllib.request.Request('http://127.0.0.1:%d/vendor/roslib.min.js' % web,
+                                     headers={'Authorization': 'token ' + TOKEN})
+        with urllib.request.urlopen(req, timeout=10) as r:
             assert r.status == 200, 'www/vendor is missing: run scripts/install_js.sh'
         driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
         driver.set_script_timeout(30)
-        driver.get('http://127.0.0.1:%d/?layout=empty' % web)
+        # the printed URL's way in: ?token= once, then the cookie (rosbridge: the page's
+        # rosauth MAC from /rosauth)
+        driver.get('http://127.0.0.1:%d/?layout=empty&token=%s' % (web, TOKEN))
         s = Stack(env, driver, launch, tmp)
         s.wait(lambda: s.js('return window.courseWeb && courseWeb.connected()'), 'the page to connect to rosbridge')
         s.js('courseWeb.setLayout(arguments[0])', LAYOUT)
