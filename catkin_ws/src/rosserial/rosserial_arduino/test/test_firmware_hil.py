@@ -200,3 +200,51 @@ def test_space_scanner_hardware_in_the_loop(core, tmp_path):
             if pub:
                 pub.stop()
             launch.stop()
+
+
+def test_time_arithmetic_and_float64_on_the_avr(bridge, core, tmp_path):
+    """ros::Time / ros::Duration arithmetic and comparisons computed on the ATmega2560 (whose
+    double is 4 bytes) give roscpp's results; a float64 from the host is narrowed to the AVR's
+    float and widened back as the original's serialiser does; nh.now() stamps follow the host's
+    clock."""
+    b = bridge(harness.build('time_float64'))
+    b.wait_log('Setup subscriber on float_in [std_msgs/Float64]')
+    out = b.echo('/arith')
+    import yaml
+    f = yaml.safe_load(out.split('---')[0])['data'].split()
+    got = dict((f[i], f[i + 1:i + 3]) for i in range(0, len(f), 3) if f[i] not in ('cmp',
+                                                                                 'tosec', 'double'))
+    assert got['add'] == ['3', '100000000']              # 1.5 + 1.6
+    assert got['wrap'] == ['4294967295', '500000000']    # 0 - 0.5 wraps as unsigned seconds
+    assert got['diff'] == ['-2', '800000000']            # 3.9 - 5.1 = -1.2 normalised
+    assert got['nsec'] == ['1', '500000000']             # fromNSec(1.5e9)
+    assert got['fsec'] == ['12', '250000000']            # fromSec(12.25)
+    assert got['scaled'] == ['4', '500000000']           # 1.5 s * 3
+    assert f[f.index('cmp') + 1] == '111'
+    assert f[f.index('tosec') + 1] == '7250'
+    assert f[f.index('double') + 1] == '4'               # the AVR's double really is a float
+
+    import numpy as np
+    values = [1.1, -3.0e38, 1e-40]      # rounded to float; x2 overflows to -inf; a subnormal
+    with np.errstate(over='ignore'):
+        want = [float(np.float32(v) * np.float32(2)) for v in values]
+    log = str(tmp_path / 'float_out.txt')
+    echo = Proc(['rostopic', 'echo', '/float_out'], env=core.env, log=log)
+    try:
+        for v, w in zip(values, want):
+            pub = Proc(['rostopic', 'pub', '-r', '2', '/float_in', 'std_msgs/Float64',
+                        'data: %s' % np.format_float_scientific(v)], env=core.env)
+            try:
+                wait_for(lambda: w in [float(x) for x in
+                                       re.findall(r'^data: (\S+)$', echo.output(), re.M)], 90,
+                         what='float_out = %r after float_in = %r; got:\n%s'
+                         % (w, v, echo.output()[-1000:]))
+            finally:
+                pub.stop()
+    finally:
+        echo.stop()
+    assert want[1] == float('-inf') and 0 < want[2] < 1e-39
+
+    stamp = b.echo('/stamp')
+    secs = [int(x) for x in re.findall(r'secs: (\d+)', stamp)]
+    assert abs(secs[0] - time.time()) < 30, stamp

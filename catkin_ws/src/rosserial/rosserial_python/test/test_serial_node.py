@@ -64,3 +64,32 @@ def test_serial_node_bridges_a_pty_device(roscore, tmp_path):
             echo.wait()
         node.stop()
         dev.close()
+
+
+def test_a_message_published_once_right_after_sync_reaches_every_subscriber(roscore, tmp_path):
+    """The device publishes a single message as soon as its publisher is set up: a subscriber
+    waiting before the node started and one that subscribes afterwards both receive it."""
+    early = subprocess.Popen(['rostopic', 'echo', '-n', '1', '/status'], env=roscore.env,
+                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                             start_new_session=True)
+    dev = FakeDevice([(p.ID_PUBLISHER, p.TopicInfo(125, 'status', 'std_msgs/String',
+                                                   STRING_MD5, 512))])
+    node = Proc(['rosrun', 'rosserial_python', 'serial_node.py', dev.path],
+                env=roscore.env, log=str(tmp_path / 'serial_node.log'))
+    late = None
+    try:
+        wait_for(lambda: 'Setup publisher on status' in node.output(), 60,
+                 what='negotiation (serial_node log):\n' + node.output())
+        dev.send(125, p.pack_string('booted'))
+        out, _ = early.communicate(timeout=60)
+        assert 'data: "booted"' in out, out
+        late = subprocess.run(['rostopic', 'echo', '-n', '1', '/status'], env=roscore.env,
+                              capture_output=True, text=True, timeout=60)
+        assert 'data: "booted"' in late.stdout, late.stdout + late.stderr
+        assert node.alive()
+    finally:
+        if early.poll() is None:
+            early.kill()
+            early.wait()
+        node.stop()
+        dev.close()

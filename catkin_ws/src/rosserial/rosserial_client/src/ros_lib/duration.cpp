@@ -19,7 +19,7 @@ void normalizeSecNSecSigned(int32_t &sec, int32_t &nsec)
 Duration &Duration::operator+=(const Duration &rhs)
 {
   sec += rhs.sec;
-  nsec += rhs.nsec;
+  nsec += rhs.nsec;   // both < 1e9: no overflow
   normalizeSecNSecSigned(sec, nsec);
   return *this;
 }
@@ -34,10 +34,7 @@ Duration &Duration::operator-=(const Duration &rhs)
 
 Duration &Duration::operator*=(double scale)
 {
-  const double t = toSec() * scale;
-  sec = (int32_t)floor(t);
-  nsec = (int32_t)((t - sec) * 1e9);
-  normalizeSecNSecSigned(sec, nsec);
+  fromSec(toSec() * scale);
   return *this;
 }
 }  // namespace ros

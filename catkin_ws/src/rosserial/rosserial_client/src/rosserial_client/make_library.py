@@ -374,8 +374,14 @@ def main(argv, prim, extra_dirs=(), prog='make_libraries'):
         sys.stderr.write('usage: %s <output directory>  (ros_lib is created inside it)\n' % prog)
         return 2
     out = os.path.join(os.path.abspath(argv[0]), 'ros_lib')
-    if not os.path.isdir(os.path.dirname(out)):
-        sys.stderr.write('%s: %s is not a directory\n' % (prog, argv[0]))
+    parent = os.path.dirname(out)
+    if os.path.exists(parent) and not os.path.isdir(parent):
+        sys.stderr.write('%s: %s exists and is not a directory\n' % (prog, argv[0]))
+        return 2
+    try:
+        os.makedirs(parent, exist_ok=True)   # as the original (copytree): a missing OUTPUT is made
+    except OSError as e:
+        sys.stderr.write('%s: cannot create %s: %s\n' % (prog, argv[0], e.strerror or e))
         return 2
     print('\nExporting to %s' % out)
     failed = make_library(out, extra_dirs, prim)

@@ -40,7 +40,9 @@ class Publisher(object):
         self.message_type = info.message_type
         self.cls = load_message(info.message_type)
         _check(self.cls, info.md5sum)
-        self.pub = rospy.Publisher(info.topic_name, self.cls, queue_size=10)
+        # latched: a message the device sends once right after sync (a status, a calibration)
+        # still reaches a subscriber whose connection is made after it was published
+        self.pub = rospy.Publisher(info.topic_name, self.cls, queue_size=10, latch=True)
 
     def handle(self, payload):
         m = self.cls()

@@ -76,79 +76,88 @@ public:
     return u.real;
   }
 
-  // A 4-byte float (AVR's float and double) as an 8-byte IEEE 754 double on the wire.
-  static int serializeAvrFloat64(unsigned char *o, const float &f)
+  // A 4-byte float (AVR's float and double) as an 8-byte IEEE 754 double on the wire, as the
+  // original widens it: exact (subnormal floats become normal doubles), inf/NaN kept, the sign
+  // set only when f < 0 (so -0.0 goes out as +0.0 and NaN as a positive NaN).
+  static int serializeAvrFloat64(unsigned char *o, const float f)
   {
     union { float real; uint32_t base; } u;
     u.real = f;
-    const uint32_t val = u.base;
-    const uint32_t sign = val >> 31;
-    int32_t exp = (int32_t)((val >> 23) & 0xFF);
-    uint32_t mant = val & 0x7FFFFF;
-    uint32_t hi, lo;
-    if (exp == 0 && mant == 0)
+    int32_t exp = (int32_t)((u.base >> 23) & 0xFF);
+    uint32_t mant = u.base & 0x7FFFFFUL;
+    if (exp == 0xFF)
+      exp = 0x7FF;                          // inf / NaN
+    else if (exp != 0)
+      exp += 1023 - 127;                    // normal
+    else if (mant != 0)
     {
-      hi = 0; lo = 0;                       // +-0
+      exp = 1023 - 126;                     // subnormal float: normalise
+      while (!(mant & 0x800000UL)) { mant <<= 1; --exp; }
+      mant &= 0x7FFFFFUL;
     }
-    else if (exp == 0xFF)
-    {
-      hi = 0x7FF00000UL | (mant >> 3);      // inf / NaN
-      lo = mant << 29;
-    }
-    else
-    {
-      if (exp == 0)                         // subnormal float: normalise
-      {
-        exp = 1;
-        while (!(mant & 0x800000UL)) { mant <<= 1; --exp; }
-        mant &= 0x7FFFFF;
-      }
-      const uint32_t e = (uint32_t)(exp - 127 + 1023);
-      hi = (e << 20) | (mant >> 3);
-      lo = mant << 29;
-    }
-    hi |= sign << 31;
+    uint32_t hi = ((uint32_t)exp << 20) | (mant >> 3);
+    const uint32_t lo = mant << 29;
+    if (f < 0)
+      hi |= 0x80000000UL;
     serializeUInt<uint32_t>(o, lo);
     serializeUInt<uint32_t>(o + 4, hi);
     return 8;
   }
 
-  // An 8-byte IEEE 754 double from the wire into a 4-byte float (rounded, saturated).
+  // An 8-byte IEEE 754 double from the wire into a 4-byte float, as the original narrows it:
+  // the top 24 mantissa bits kept and rounded half up to 23 (no carry into the exponent), too
+  // large -> inf, below float's subnormal range -> 0, float-subnormal range shifted into a
+  // subnormal float, inf/NaN kept, the sign copied.
   static int deserializeAvrFloat64(const unsigned char *i, float *f)
   {
     const uint32_t lo = deserializeUInt<uint32_t>(i);
     const uint32_t hi = deserializeUInt<uint32_t>(i + 4);
-    const uint32_t sign = hi >> 31;
-    const int32_t exp = (int32_t)((hi >> 20) & 0x7FF);
-    uint32_t mant = ((hi & 0xFFFFFUL) << 3) | (lo >> 29);   // top 23 bits
-    uint32_t out;
+    int32_t exp = (int32_t)((hi >> 20) & 0x7FF);
+    uint32_t mant = ((hi & 0xFFFFFUL) << 4) | (lo >> 28);   // top 24 bits
+    const int32_t e = exp - 1023;
     if (exp == 0x7FF)
+      exp = 0xFF;
+    else if (e > 127)
     {
-      out = 0x7F800000UL | (mant ? (mant | 0x400000UL) : 0);
+      exp = 0xFF;                           // too large: inf
+      mant = 0;
+    }
+    else if (e >= -126)
+      exp = e + 127;                        // normal
+    else if (e < -150)
+    {
+      exp = 0;                              // too small (or 0): 0
+      mant = 0;
     }
     else
     {
-      int32_t e = exp - 1023 + 127;
-      if (exp == 0 || e <= 0)
-        out = 0;                            // too small for a normal float: 0
-      else if (e >= 0xFF)
-        out = 0x7F800000UL;                 // too large: inf
-      else
-      {
-        // round to nearest on the 29 dropped bits
-        if ((lo & 0x1FFFFFFFUL) > 0x10000000UL ||
-            ((lo & 0x1FFFFFFFUL) == 0x10000000UL && (mant & 1)))
-        {
-          if (++mant == 0x800000UL) { mant = 0; ++e; }
-        }
-        out = (e >= 0xFF) ? 0x7F800000UL : (((uint32_t)e << 23) | mant);
-      }
+      mant = (mant | 0x1000000UL) >> (-126 - e);           // a subnormal float
+      exp = 0;
     }
-    out |= sign << 31;
+    if (mant != 0xFFFFFFUL)
+      mant += 1;                            // round the 24th bit half up
+    mant >>= 1;
+    uint32_t out = mant | ((uint32_t)exp << 23) | (hi & 0x80000000UL);
     union { float real; uint32_t base; } u;
     u.base = out;
     *f = u.real;
     return 8;
+  }
+
+  // The original's little-endian helpers.
+  template <typename A, typename V>
+  static void varToArr(A arr, const V var)
+  {
+    for (size_t k = 0; k < sizeof(V); k++)
+      arr[k] = (var >> (8 * k));
+  }
+
+  template <typename V, typename A>
+  static void arrToVar(V &var, const A arr)
+  {
+    var = 0;
+    for (size_t k = 0; k < sizeof(V); k++)
+      var |= (arr[k] << (8 * k));
   }
 
   // Strings: length (uint32) then bytes. On receive the text is moved one byte down over the
