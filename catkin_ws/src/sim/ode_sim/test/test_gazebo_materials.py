@@ -150,3 +150,19 @@ def test_broken_material_script_is_a_warning(tmp_path):
     assert '%s:3: block "technique" is not closed' % (scripts / 'bad.material') \
         in w.warnings[0]
     assert "material 'Broken' drawn in a plain colour" in w.warnings[0]
+
+
+def test_urdf_collada_visual_keeps_its_materials_unless_gazebo_paints_it():
+    from ode_sim.description.urdf import parse_urdf
+    dae = os.path.join(MODELS, 'step_block', 'meshes', 'step_block.dae')
+    urdf = '''<robot name="r"><link name="base"><inertial><mass value="1"/>
+      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+      <visual><geometry><mesh filename="file://%s"/></geometry>
+      <material name="white"><color rgba="1 1 1 1"/></material></visual></link>%s</robot>'''
+    plain = parse_urdf(urdf % (dae, ''), os.path.join(HERE, 'r.urdf'), 'r')
+    v = plain.links[0].visuals[0]
+    assert v.material is None and [p.material.name for p in v.geometry.parts] == ['red', 'split']
+    painted = parse_urdf(urdf % (dae, '<gazebo reference="base"><material>Gazebo/Blue</material>'
+                                 '</gazebo>'), os.path.join(HERE, 'r.urdf'), 'r')
+    v = painted.links[0].visuals[0]
+    assert v.material.name == 'Gazebo/Blue' and v.material.diffuse == (0.0, 0.0, 1.0, 1.0)

@@ -16,8 +16,8 @@ import os
 import numpy as np
 
 from ode_sim.description import materials
-from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model,
-                                       ModelError, Visual)
+from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Material,
+                                       Model, ModelError, Visual)
 from ode_sim.description.resolve import ModelPaths
 from ode_sim.description.sdf_elements import check_inertial, load_mesh_geometry, parse_sensor
 from ode_sim.description.xmldoc import ParseContext, parse_xml
@@ -410,6 +410,11 @@ class _Parser(GazeboExtensions):
                                                            ext['material_where'])
                     if 'visual_diffuse' in ext:
                         v.color = ext['visual_diffuse']
+                    if ('material' in ext or 'visual_diffuse' in ext) and \
+                            v.geometry.kind == 'mesh' and v.geometry.parts:
+                        # Gazebo paints the whole mesh with the <gazebo> material, over the
+                        # file's own materials (a plain colour needs none: its look is v.color)
+                        v.material = Material(name=v.material_name, diffuse=tuple(v.color))
                     link.visuals.append(v)
                     vi += 1
                 if ext.get('selfCollide'):
