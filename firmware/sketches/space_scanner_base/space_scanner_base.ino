@@ -7,13 +7,16 @@
  * `motor_right_vel`; set-points (whole rad/s, std_msgs/Int32) from `motor_left_cmd` /
  * `motor_right_cmd`; 57600 baud. Loop: encoder speed -> publish -> PID -> spinOnce, delay(1).
  * An encoder glitch (the same speed measured twice in a row while it should change) is
- * skipped; the gyro bias is the mean of 200 samples at rest taken in setup().
+ * skipped; the gyro bias is the mean of 200 samples at rest taken in setup(); the accelerometer
+ * is corrected by the diploma's ellipsoid calibration m = A^-1 (M - b) of accel_calibration.h
+ * (the identity until `rosrun space_scanner_hw calibrate_accel` writes a fitted one).
  */
 #include <ros.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/Int32.h>
 #include <sensor_msgs/Imu.h>
 #include <Wire.h>
+#include "accel_calibration.h"
 
 // ---- hardware ----------------------------------------------------------------------------
 const uint8_t ENC_LEFT_PIN = 2, ENC_RIGHT_PIN = 3;
@@ -204,6 +207,16 @@ char imu_frame[] = "imu_link";
 void encL_update() { encL.edge(); }
 void encR_update() { encR.edge(); }
 
+// the reading in m/s^2, M, corrected: m = A^-1 (M - b) (accel_calibration.h)
+void accelCalibrated(const int16_t raw[7], float acc_lsb, float g, float out[3])
+{
+  float m[3];
+  for (int k = 0; k < 3; k++)
+    m[k] = raw[k] / acc_lsb * g - ACCEL_CAL_OFFSET[k];
+  for (int i = 0; i < 3; i++)
+    out[i] = ACCEL_CAL_MATRIX[i][0] * m[0] + ACCEL_CAL_MATRIX[i][1] * m[1] + ACCEL_CAL_MATRIX[i][2] * m[2];
+}
+
 void imuData()
 {
   int16_t raw[7];
@@ -212,9 +225,11 @@ void imuData()
   const float G = 9.80665, ACC = 16384.0, GYRO = 131.0 * 180.0 / PI;   // +-2 g, +-250 deg/s
   imu_msg.header.stamp = nh.now();
   imu_msg.header.frame_id = imu_frame;
-  imu_msg.linear_acceleration.x = raw[0] / ACC * G;
-  imu_msg.linear_acceleration.y = raw[1] / ACC * G;
-  imu_msg.linear_acceleration.z = raw[2] / ACC * G;
+  float acc[3];
+  accelCalibrated(raw, ACC, G, acc);
+  imu_msg.linear_acceleration.x = acc[0];
+  imu_msg.linear_acceleration.y = acc[1];
+  imu_msg.linear_acceleration.z = acc[2];
   imu_msg.angular_velocity.x = (raw[4] - gyro_bias[0]) / GYRO;
   imu_msg.angular_velocity.y = (raw[5] - gyro_bias[1]) / GYRO;
   imu_msg.angular_velocity.z = (raw[6] - gyro_bias[2]) / GYRO;
