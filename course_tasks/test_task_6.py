@@ -1,11 +1,13 @@
 """Practical work 6 replayed as a student does it (textbook chapter 7): camera and lidar.
 
-`catkin_create_pkg my_robot_simulation_sensors rospy std_msgs`, the chapter's model, gazebo and
-launch files (from the reference package catkin_ws/src/course/my_robot_simulation_sensors),
-the text's own `sensor_data_proc.py` listing, `catkin build`, `check_urdf`, then
-`roslaunch my_robot_simulation_sensors robot_sim_camera.launch gui:=false rviz:=false`:
-/scan and /camera/image_raw arrive with the configured sizes, `rostopic echo` of single fields
-works, and the student's script publishes Canny edges of the camera image.
+`catkin_create_pkg my_robot_simulation_sensors rospy std_msgs`, the chapter's launch file and
+RViz config (from the reference package catkin_ws/src/course/my_robot_simulation_sensors), the
+text's own `sensor_data_proc.py` listing, `catkin build`; the model where the text puts it
+($(find my_robot_simulation)/diff_drive_robot/urdf/diff_drive_robot.xacro) through `xacro` and
+`check_urdf`; then `roslaunch my_robot_simulation_sensors robot_sim_camera.launch gui:=false
+rviz:=false`: /diff_drive_robot/laser and /diff_drive_robot/camera1/image_raw arrive with the
+configured sizes, `rostopic echo` of single fields works, and the student's script publishes
+Canny edges of the camera image.
 """
 import importlib.util
 import os
@@ -24,15 +26,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 REFERENCE = os.path.join(S.REPO, 'catkin_ws', 'src', 'course', PKG)
 STARTER = os.path.join(HERE, 'task_6', 'starter', PKG)
 README = os.path.join(HERE, 'task_6', 'README.md')
-FILES = {'urdf': ['diff_drive_robot.urdf.xacro', 'diff_drive.gazebo'],
-         'launch': ['robot_sim_camera.launch'],
+FILES = {'launch': ['robot_sim_camera.launch'],
          'config': ['sensors.rviz']}
 
 
 @pytest.fixture(scope='module')
 def workspace(tmp_path_factory):
     ws = S.make_workspace(tmp_path_factory.mktemp('task6'))
-    pkg, out = S.create_package(ws, PKG, ['rospy', 'std_msgs'], ['launch', 'urdf', 'config', 'scripts'],
+    pkg, out = S.create_package(ws, PKG, ['rospy', 'std_msgs'], ['launch', 'config', 'scripts'],
                                 REFERENCE, FILES)
     S.write_script(os.path.join(pkg, 'scripts', 'sensor_data_proc.py'),
                    S.readme_listing(README, '#!/usr/bin/env python3\nimport os'))
@@ -47,10 +48,11 @@ def test_starter_layout():
         assert '<exec_depend>%s</exec_depend>' % dep in xml
 
 
-def test_model_with_sensors(workspace):
-    env, urdf = workspace['env'], os.path.join(workspace['pkg'], 'urdf')
+def test_model_with_sensors(workspace, tmp_path):
+    env, urdf = workspace['env'], str(tmp_path)
     assert S.sh(['rospack', 'find', PKG], env).strip() == workspace['pkg']
-    S.sh('rosrun xacro xacro diff_drive_robot.urdf.xacro > diff_drive_robot.urdf', env, cwd=urdf)
+    S.sh("rosrun xacro xacro $(rospack find my_robot_simulation)/diff_drive_robot/urdf/diff_drive_robot.xacro"
+         " > diff_drive_robot.urdf", env, cwd=urdf)
     out = S.sh(['check_urdf', 'diff_drive_robot.urdf'], env, cwd=urdf)
     assert 'root Link: base_link has 5 child(ren)' in out and 'camera' in out and 'lidar' in out, out
     with open(os.path.join(urdf, 'diff_drive_robot.urdf')) as f:
@@ -65,11 +67,11 @@ def test_camera_lidar_and_edges(workspace, roscore, tmp_path):
     p = S.launch(['roslaunch', PKG, 'robot_sim_camera.launch', 'gui:=false', 'rviz:=false'], env,
                  tmp_path / 'launch.log')
     try:
-        scan = T.probe(['topic', '/scan'], env, proc=p)
+        scan = T.probe(['topic', '/diff_drive_robot/laser'], env, proc=p)
         assert scan['samples'] == 720 and scan['frame_id'] == 'lidar', scan
-        out = S.sh(['rostopic', 'echo', '-n', '1', '/scan/angle_min'], env, timeout=30)
+        out = S.sh(['rostopic', 'echo', '-n', '1', '/diff_drive_robot/laser/angle_min'], env, timeout=30)
         assert float(out.split()[0]) == pytest.approx(-0.785, abs=1e-3)
-        img = T.probe(['topic', '/camera/image_raw', '--save', tmp_path / 'camera.png'], env, proc=p)
+        img = T.probe(['topic', '/diff_drive_robot/camera1/image_raw', '--save', tmp_path / 'camera.png'], env, proc=p)
         assert (img['width'], img['height'], img['encoding']) == (600, 400, 'rgb8'), img
         out = S.sh(['rostopic', 'echo', '-n', '1', '/sensor_data_proc/edges/width'], env, timeout=60)
         assert out.split()[0] == '600'

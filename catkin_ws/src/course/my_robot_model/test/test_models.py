@@ -133,3 +133,25 @@ def test_check_model_cli(tmp_path):
     broken.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:nosuch/></robot>')
     r = subprocess.run([script, str(broken)], capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and 'xacro' in r.stderr and 'Traceback' not in r.stderr
+
+
+def test_done_model_stands_on_base_link_origin(diff_robot):
+    """diff_robot_model_done.urdf.xacro (the textbook's PW4 sim.launch loads it, spawned without
+    -z): the same robot with base_link's origin on the ground and the diff-drive plugin."""
+    text = mc.expand_xacro(os.path.join(PKG, 'urdf', 'diff_robot_model_done.urdf.xacro'))
+    rc, out = mc.check_urdf(text)
+    assert rc == 0, out
+    assert mc.problems(text, resolve=mc.rospack_resolver()) == []
+    m, pw3 = mc.parse(text), mc.parse(diff_robot)
+    assert sorted(m.links) == sorted(pw3.links) and sorted(m.joints) == sorted(pw3.joints)
+    r = float(m.links['wheel_left'].find('collision/geometry/cylinder').get('radius'))
+    for side in ('left', 'right'):
+        z = float(m.joints['wheel_%s_joint' % side].find('origin').get('xyz').split()[2])
+        assert z - r == pytest.approx(0.0), 'wheel_%s does not touch z = 0' % side
+    cz = float(m.joints['caster_joint'].find('origin').get('xyz').split()[2])
+    assert cz - float(m.links['caster'].find('collision/geometry/sphere').get('radius')) == pytest.approx(0.0)
+    plugins = [p.get('filename') for g in m.gazebo for p in g.iter('plugin')]
+    assert plugins == ['libgazebo_ros_diff_drive.so'], plugins
+    for n in m.links:
+        assert mc.inertia_matrix(m.links[n].find('inertial')) == pytest.approx(
+            mc.inertia_matrix(pw3.links[n].find('inertial')), rel=1e-6), n

@@ -1,17 +1,20 @@
-"""The robot with sensors: expands, passes check_urdf and the simulator checks, carries the
-camera and lidar sensors with their plugins and the diff drive of practical work 4."""
+"""The robot with sensors (my_robot_simulation/diff_drive_robot/urdf/diff_drive_robot.xacro, where
+the textbook's launch file loads it): expands, passes check_urdf and the simulator checks, carries
+the camera and lidar sensors with the textbook's plugin names and values and the diff drive of
+practical work 4."""
 import os
 
 import pytest
 
 from my_robot_model import model_check as mc
 
-PKG = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SRC = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MODEL = os.path.join(SRC, 'my_robot_simulation', 'diff_drive_robot', 'urdf', 'diff_drive_robot.xacro')
 
 
 @pytest.fixture(scope='module')
 def model():
-    return mc.checked_model(os.path.join(PKG, 'urdf', 'diff_drive_robot.urdf.xacro'),
+    return mc.checked_model(MODEL,
                             root_frames=())
 
 
@@ -35,7 +38,8 @@ def test_camera(model):
     p = s.find('plugin')
     assert p.get('filename') == 'libgazebo_ros_camera.so'
     assert (p.findtext('cameraName'), p.findtext('imageTopicName'), p.findtext('frameName')) == \
-        ('camera', 'image_raw', 'camera')
+        ('diff_drive_robot/camera1', 'image_raw', 'camera')
+    assert s.findtext('update_rate') == '30.0' and s.findtext('camera/horizontal_fov') == '1.3962634'
 
 
 def test_lidar(model):
@@ -47,7 +51,8 @@ def test_lidar(model):
     assert (s.findtext('ray/range/min'), s.findtext('ray/range/max')) == ('0.03', '3.0')
     p = s.find('plugin')
     assert p.get('filename') == 'libgazebo_ros_laser.so'
-    assert (p.findtext('topicName'), p.findtext('frameName')) == ('/scan', 'lidar')
+    assert (p.findtext('topicName'), p.findtext('frameName')) == ('/diff_drive_robot/laser', 'lidar')
+    assert (s.findtext('ray/noise/type'), s.findtext('ray/noise/stddev')) == ('gaussian', '0.01')
 
 
 def test_lidar_sees_over_the_camera(model):

@@ -21,7 +21,7 @@ def test_image_view_shows_sim_camera(roscore, xvfb, tmp_path):
         procs.append(Proc(['roslaunch', 'my_robot_simulation_sensors', 'robot_sim_camera.launch', 'gui:=false',
                            'rviz:=false', 'proc:=false'], env=env, log=str(tmp_path / 'sim.log')))
         gui = Proc([sys.executable, os.path.join(HERE, 'check_image_view_driver.py'), str(flag),
-                    '/camera/image_raw'], env=env, log=str(tmp_path / 'image_view.log'))
+                    '/diff_drive_robot/camera1/image_raw'], env=env, log=str(tmp_path / 'image_view.log'))
         procs.append(gui)
         wait_for(lambda: any(s.get('kind') == 'shown' for s in states(gui.output())) or not gui.alive(),
                  180, 0.3, 'rqt_image_view to show 5 camera frames')
@@ -39,7 +39,7 @@ def test_image_view_shows_sim_camera(roscore, xvfb, tmp_path):
     finally:
         for p in reversed(procs):
             p.stop()
-    assert shown['topic'] == '/camera/image_raw'
+    assert shown['topic'] == '/diff_drive_robot/camera1/image_raw'
     assert shown['std'] > 5, 'the camera image is uniform'
     x, y, w, h = shown['image_rect']
     assert w > 100 and h > 60
