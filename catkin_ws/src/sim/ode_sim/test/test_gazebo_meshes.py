@@ -173,3 +173,23 @@ def test_missing_texture_warns_and_draws_plain(tmp_path):
     assert m.parts[1].material.texture == ''
     assert len(m.warnings) == 1 and "texture 'nowhere.png' not found" in m.warnings[0]
     assert p in m.warnings[0] and '\n' not in m.warnings[0]
+
+
+def test_a_mesh_body_rests_on_a_mesh_model():
+    """Trimesh against trimesh (ODE's collider): a dynamic body whose collision is the OBJ
+    prism, centred (<submesh><center>) and scaled to 0.4 x 0.8 x 0.2 m, dropped on the upper
+    step of the COLLADA block (0.6 m high)."""
+    w = world('''<include><uri>model://step_block</uri></include>
+      <model name="p"><pose>0.25 0 1.0 0 0 0</pose><link name="l">
+        <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz>
+        </inertia></inertial>
+        <collision name="c"><geometry><mesh><uri>model://prism/meshes/prism.obj</uri>
+          <submesh><name>prism</name><center>true</center></submesh><scale>0.4 0.4 0.4</scale>
+        </mesh></geometry></collision></link></model>''')
+    pw = PhysicsWorld(w.physics, w.gravity)
+    for m in w.models:
+        pw.add_model(m)
+    pw.step(2500)
+    p = pw.models['p'].pose().p
+    assert p[2] == pytest.approx(0.7, abs=0.01), p
+    assert abs(p[0] - 0.25) < 0.05 and abs(p[1]) < 0.05
