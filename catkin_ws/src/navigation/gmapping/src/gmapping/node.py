@@ -45,12 +45,23 @@ def read_params():
 
 
 class SlamGMapping(object):
-    def __init__(self, params):
+    """live=True: scans from the `scan` topic, odometry from the TF listener, map->odom
+    broadcast every transform_publish_period. live=False (slam_gmapping_replay): the caller fills
+    tf_buffer and hands scans to laser_callback(); map->odom goes out with each processed scan and
+    the stamps come from the scans, so no clock is needed."""
+
+    def __init__(self, params, live=True, seed=None, tf_cache=30.0):
         self.p = params
-        self.slam = GridSlam(params, seed=rospy.get_param('~seed', None))
+        self.live = live
+        if seed is None:
+            seed = rospy.get_param('~seed', None)
+        self.slam = GridSlam(params, seed=seed)
         self.lock = threading.Lock()
-        self.tf_buffer = tf2_ros.Buffer(rospy.Duration(30.0))
-        self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
+        self.tf_buffer = tf2_ros.Buffer(rospy.Duration(tf_cache))
+        self.tf_wait = rospy.Duration(TF_WAIT if live else 0.0)
+        self.last_stamp = None
+        if live:
+            self.tf_listener = tf2_ros.TransformListener(self.tf_buffer)
         self.tf_broadcaster = tf2_ros.TransformBroadcaster()
         self.map_pub = rospy.Publisher('map', NumpyOccupancyGrid, queue_size=1, latch=True)
         self.meta_pub = rospy.Publisher('map_metadata', MapMetaData, queue_size=1, latch=True)
@@ -65,6 +76,8 @@ class SlamGMapping(object):
         self.upside_down = False
         self.max_range = self.max_urange = None
         rospy.Service('dynamic_map', NumpyGetMap, self.map_callback)
+        if not live:
+            return
         self.scan_sub = rospy.Subscriber('scan', LaserScan, self.laser_callback, queue_size=5)
         if params.transform_publish_period > 0.0:
             self.tf_thread = threading.Thread(target=self.publish_loop, daemon=True)
@@ -107,7 +120,7 @@ class SlamGMapping(object):
     def odom_laser_pose(self, scan):
         try:
             t = self.tf_buffer.lookup_transform(self.p.odom_frame, scan.header.frame_id, scan.header.stamp,
-                                                rospy.Duration(TF_WAIT))
+                                                self.tf_wait)
         except (tf2_ros.LookupException, tf2_ros.ConnectivityException, tf2_ros.ExtrapolationException) as e:
             rospy.logwarn_throttle(5.0, 'Failed to compute odom pose, skipping scan: no transform from '
                                    '"%s" (scan frame) to "%s" (odom_frame): %s'
@@ -153,6 +166,11 @@ class SlamGMapping(object):
         correction = conversions.map_to_odom(self.slam.best_pose(), odom_pose)
         with self.lock:
             self.map_to_odom = correction
+        self.last_stamp = scan.header.stamp
+        if not self.live:
+            self.tf_broadcaster.sendTransform(conversions.transform_msg(
+                correction, self.p.map_frame, self.p.odom_frame,
+                scan.header.stamp + rospy.Duration(self.p.tf_delay)))
         self.entropy_pub.publish(Float64(self.slam.weight_entropy()))
         if self.last_map_update is None or stamp - self.last_map_update >= self.p.map_update_interval:
             self.update_map()
@@ -160,7 +178,8 @@ class SlamGMapping(object):
 
     def update_map(self):
         grid, origin = self.slam.occupancy()
-        msg = conversions.map_msg(grid, origin, self.p, self.p.map_frame, rospy.Time.now())
+        stamp = rospy.Time.now() if self.live else self.last_stamp
+        msg = conversions.map_msg(grid, origin, self.p, self.p.map_frame, stamp)
         with self.lock:
             self.map = msg
         self.meta_pub.publish(msg.info)
