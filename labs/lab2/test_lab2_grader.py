@@ -6,7 +6,12 @@ from grading.selftest import crit, failed, run_cases
 NODE = 'src/my_best_controller/node.py'
 CASES = {
     'ref_three_points': ('123451', {}),
-    'ref_four_points': ('334400', {}),
+    # table 10.1 prints row 9 (and 0) as (2,3) (4,2) (7,1) (4,2): the reference visits the
+    # three printed points; a route coming back to (4,2) and timed to that arrival passes too
+    'ref_row_9_printed': ('334409', {}),
+    'row_9_repeat_visited': ('334409', {'edits': [('src/my_best_controller/motion.py',
+                                                   'self.todo = route((x, y), self.points)',
+                                                   'self.todo = [(2, 3), (4, 2), (7, 1), (4, 2)]')]}),
     'remap_used': ('123451', {'edits': [('launch/lab2_setup.launch',
                                          'name="lab2_controller" output="screen"/>\n  </group>\n</launch>',
                                          'name="lab2_controller" output="screen">\n      <remap from="unused" to="other"/>\n    </node>\n  </group>\n</launch>')]}),
@@ -23,11 +28,22 @@ def runs(tmp_path_factory):
     return run_cases('lab2', CASES, str(tmp_path_factory.mktemp('lab2')), workers=2)
 
 
-@pytest.mark.parametrize('name', ['ref_three_points', 'ref_four_points'])
+@pytest.mark.parametrize('name', ['ref_three_points', 'ref_row_9_printed'])
 def test_reference_passes(runs, name):
     rc, out, crits = crit(runs, name)
     assert rc == 0, out
     assert sorted(crits) == ['0', '1', '2', '3', '4', '5', '6'] and not failed(crits), out
+
+
+def test_row_9_printed_points_only(runs):
+    _, out, crits = crit(runs, 'ref_row_9_printed')
+    assert all(p in crits['2'][1] for p in ('(2,3)', '(4,2)', '(7,1)')) and '(5,4)' not in crits['2'][1], out
+
+
+def test_row_9_repeated_cell_as_a_second_visit(runs):
+    rc, out, crits = crit(runs, 'row_9_repeat_visited')
+    assert rc == 0 and not failed(crits), out
+    assert 'to the repeated (4,2) again, the row as printed' in crits['3'][1], out
 
 
 def test_remap_used(runs):
