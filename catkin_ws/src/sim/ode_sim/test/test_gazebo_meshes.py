@@ -193,3 +193,38 @@ def test_a_mesh_body_rests_on_a_mesh_model():
     p = pw.models['p'].pose().p
     assert p[2] == pytest.approx(0.7, abs=0.01), p
     assert abs(p[0] - 0.25) < 0.05 and abs(p[1]) < 0.05
+
+
+def test_the_diplomas_chassis_mesh_loads_and_is_drawn():
+    """space_scanner_simulation/meshes/base.dae (COLLADA as assimp exports it) as the chassis
+    visual of the simulation's URDF: parsed, spawned, drawn by the camera."""
+    import shutil
+    import subprocess
+    from ode_sim.description.model import Light, Physics
+    from ode_sim.description.urdf import parse_urdf
+    from ode_sim.engine.render import Renderer
+    src = os.path.abspath(os.path.join(HERE, '..', '..', '..'))
+    dae = os.path.join(src, 'space_scanner', 'space_scanner_simulation', 'meshes', 'base.dae')
+    m = load_mesh(dae)
+    assert len(m.parts) >= 2 and all(p.material is not None for p in m.parts)
+    size = m.vertices.max(axis=0) - m.vertices.min(axis=0)
+    assert 0.05 < size.min() and size.max() < 1.0, size          # metres, a small chassis
+    xacro = os.path.join(src, 'space_scanner', 'space_scanner_simulation', 'urdf',
+                         'chassi_bot.urdf.xacro')
+    out = subprocess.run([shutil.which('xacro'), xacro], capture_output=True, text=True,
+                         timeout=60)
+    assert out.returncode == 0, out.stderr
+    robot = parse_urdf(out.stdout, xacro, 'robot')
+    vis = [v for link in robot.links for v in link.visuals
+           if v.geometry.kind == 'mesh' and v.geometry.filename == dae]
+    assert len(vis) == 1 and vis[0].geometry.parts
+    pw = PhysicsWorld(Physics())
+    pw.add_model(robot)
+    r = Renderer(160, 120, 1.0)
+    try:
+        r.set_scene(pw.visual_shapes(), lights=[Light('sun', direction=(0.3, 0.5, -1.0))],
+                    background=(0.0, 0.0, 0.0, 1))
+        rgb, _ = r.render(Pose.from_xyz_rpy((-0.6, 0.0, 0.4), (0.0, 0.55, 0.0)))
+    finally:
+        r.release()
+    assert (rgb.max(axis=2) > 0).mean() > 0.05            # the robot fills part of the image
