@@ -166,3 +166,19 @@ def test_urdf_collada_visual_keeps_its_materials_unless_gazebo_paints_it():
                                  '</gazebo>'), os.path.join(HERE, 'r.urdf'), 'r')
     v = painted.links[0].visuals[0]
     assert v.material.name == 'Gazebo/Blue' and v.material.diffuse == (0.0, 0.0, 1.0, 1.0)
+
+
+def test_scene_markers_colour_a_collada_model_by_its_materials():
+    from ode_sim.ros.markers import shape_marker
+    w = world('<include><uri>model://step_block</uri></include>')
+    pw = PhysicsWorld(w.physics, w.gravity)
+    for m in w.models:
+        pw.add_model(m)
+    (shape,) = [s for s in pw.visual_shapes() if s.model == 'step_block']
+    mk = shape_marker(shape, 0, 'odom', None)
+    assert len(mk.colors) == len(mk.points) == 2 * 12 * 3
+    red = mk.colors[0]
+    assert (red.r, red.g, red.b) == pytest.approx((0.8, 0.0, 0.0), abs=1e-6)
+    tex = mk.colors[-1]                    # white x the texture's mean: half green, half blue
+    assert tex.r == pytest.approx(0.0) and tex.g == pytest.approx(100 / 255, abs=0.01) and \
+        tex.b == pytest.approx(100 / 255, abs=0.01)

@@ -49,11 +49,36 @@ def _marker_body(shape):
             return None
         m.type = Marker.TRIANGLE_LIST
         m.scale.x = m.scale.y = m.scale.z = 1.0
-        tri = g.vertices[g.faces.reshape(-1)]
-        m.points = [Point(float(x), float(y), float(z)) for x, y, z in tri]
+        parts = getattr(g, 'parts', None)
+        if not parts:
+            tri = g.vertices[g.faces.reshape(-1)]
+            m.points = [Point(float(x), float(y), float(z)) for x, y, z in tri]
+        else:
+            # a mesh file's parts, each in its material's colour (the visual's own material
+            # over them; a texture as its mean colour): per-vertex colours
+            own = getattr(shape, 'material', None)
+            for part in parts:
+                rgba = ColorRGBA(*_material_rgba(own or part.material, shape.color))
+                tri = part.positions[part.faces.reshape(-1)]
+                m.points += [Point(float(x), float(y), float(z)) for x, y, z in tri]
+                m.colors += [rgba] * len(tri)
+            m.color = ColorRGBA(1.0, 1.0, 1.0, 1.0)
     else:
         return None
     return m, offset
+
+
+def _material_rgba(mat, fallback):
+    """RGBA of a model.Material for a marker: diffuse x the texture's mean colour, opacity."""
+    if mat is None:
+        return tuple(float(c) for c in fallback)
+    rgb = np.array([float(c) for c in mat.diffuse[:3]])
+    if mat.texture:
+        from ode_sim.engine.render import texture_image
+        _, img = texture_image(mat.texture)
+        if img is not None:
+            rgb = rgb * img[..., :3].reshape(-1, 3).mean(axis=0) / 255.0
+    return tuple(float(c) for c in rgb) + (float(mat.opacity),)
 
 
 def shape_marker(shape, marker_id, frame, stamp, cache=None):
