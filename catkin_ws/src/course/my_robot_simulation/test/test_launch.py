@@ -89,8 +89,17 @@ def test_scene_launch_loads_the_library_objects(env, tmp_path):
         T.probe(['model', 'my_robot_model'], env, proc=p)
         for name in ('cone_ahead', 'table', 'bookshelf', 'crate'):
             T.probe(['model', name, '--timeout', 20], env, proc=p)
-        markers = T.probe(['topic', '/gazebo/scene_markers'], env, proc=p)
-        assert markers['type'] == 'visualization_msgs/MarkerArray'
+        # the simulator advertises its scene markers once someone subscribes (RViz's scene
+        # display does; ode_sim's README): subscribe as RViz would, with the type known
+        code, out = T.rosrun_out(
+            ['/usr/bin/python3', '-c',
+             'import rospy; from visualization_msgs.msg import MarkerArray; '
+             'rospy.init_node("scene_check", anonymous=True); '
+             'm = rospy.wait_for_message("/gazebo/scene_markers", MarkerArray, timeout=60); '
+             'print(sorted({k.ns for k in m.markers}))'], env, timeout=120)
+        assert code == 0, out + p.output()[-2000:]
+        for name in ('cone_ahead', 'table', 'bookshelf', 'crate'):
+            assert 'ode_sim/' + name in out, out
     finally:
         p.stop()
 

@@ -301,7 +301,8 @@ def test_one_tf_message_per_step_group_with_the_same_transforms():
     assert batch.pub.name == '/tf' and batch.pub.data_class is TFMessage
     pw2, plugs2 = drive_pair(batch)
     node = types.SimpleNamespace(_pre=[], _post=plugs2, lock=threading.RLock(), physics=pw2,
-                                 step_hooks=[], tf=batch, publish_clock=lambda: None,
+                                 step_hooks=[], before_step_hooks=[], tf=batch,
+                                 publish_clock=lambda: None,
                                  _limits=[p.next_update for p in plugs2], group_limits=[])
     groups = 0
     while pw2.steps < 500:

@@ -24,6 +24,15 @@ def parse_args(argv):
     return known, unknown
 
 
+def param_bool(name, default):
+    """A boolean parameter given as a bool or as text (roslaunch <param value="false"/>)."""
+    import rospy
+    v = rospy.get_param(name, default)
+    if isinstance(v, str):
+        return v.strip().lower() in ('1', 'true', 'yes')
+    return bool(v)
+
+
 def main(argv):
     known, unknown = parse_args(argv)
     import rospy
@@ -54,8 +63,17 @@ def main(argv):
         rospy.logfatal('sim_node: %s' % e)
         sys.stderr.write('sim_node: error: %s\n' % e)
         return 1
-    frame = known.scene_frame or rospy.get_param('~scene_frame', 'odom')
-    GazeboApi(node, scene_frame=frame)
+    # as gazebo_ros_api_plugin: /use_sim_time true unless the user set it
+    if not rospy.has_param('/use_sim_time'):
+        rospy.set_param('/use_sim_time', True)
+    if param_bool('~enable_ros_network', True):
+        frame = known.scene_frame or rospy.get_param('~scene_frame', 'odom')
+        api = GazeboApi(node, scene_frame=frame,
+                        scene_markers=param_bool('~scene_markers', False))
+        from ode_sim.ros.physics_reconfigure import PhysicsReconfigure
+        api.reconfigure = PhysicsReconfigure(api, log=rospy.loginfo).server()
+    else:
+        rospy.loginfo('ROS gazebo topics/services are disabled')
     rospy.loginfo('ode_sim: world %s loaded (%d models, step %g s, update rate %g Hz%s)%s'
                   % (path, len(world.models), world.physics.max_step_size,
                      world.physics.real_time_update_rate,

@@ -19,6 +19,7 @@ class StepLoop:
         self._pre = []              # plugins overriding before_step
         self._post = []             # plugins overriding update
         self._limits = []           # their next_update
+        self.before_step_hooks = [] # callables run before each step (forces of the /gazebo API)
         self.step_hooks = []        # callables run after each step (model_states publisher ...)
         self.group_limits = []      # callables: when a hook next has work (see group_size)
 
@@ -54,11 +55,13 @@ class StepLoop:
         return n
 
     def step_once(self, n=1):
-        """before_step of the plugins, n physics steps in one call, their update(), the step
-        hooks, one /tf message, then publish_clock()."""
+        """before_step of the plugins, the before-step hooks, n physics steps in one call, the
+        plugins' update(), the step hooks, one /tf message, then publish_clock()."""
         for p in self._pre:
             p.before_step()
         with self.lock:
+            for hook in self.before_step_hooks:
+                hook()
             self.physics.step(n)
             for p in self._post:
                 p.update()

@@ -16,6 +16,9 @@ MODULES = {
                'libgazebo_ros_depth_camera.so'],
     'control': ['libgazebo_ros_control.so'],
     'contact': ['libgazebo_ros_bumper.so'],
+    'range': ['libgazebo_ros_range.so'],
+    'motion': ['libgazebo_ros_planar_move.so', 'libgazebo_ros_force.so',
+               'libgazebo_ros_vacuum_gripper.so'],
 }
 
 

@@ -150,15 +150,33 @@ class TfBatch:
     def __init__(self, io):
         from tf2_msgs.msg import TFMessage
         self._msg = TFMessage
-        self.pub = io.publisher('/tf', TFMessage, queue_size=100)   # tf2_ros's queue
+        self._io = io
+        # /tf is advertised by the first plugin that broadcasts (asks wanted() or sends), as a
+        # gazebo_plugins plugin creates its tf::TransformBroadcaster when it loads: a world
+        # without such a plugin advertises no /tf, as Gazebo.
+        self._pub = None
         self.pending = []
         self.messages = 0
 
+    def advertised(self):
+        return self._pub is not None
+
+    @property
+    def pub(self):
+        """The /tf publisher (advertised on first use)."""
+        return self._publisher()
+
+    def _publisher(self):
+        if self._pub is None:
+            self._pub = self._io.publisher('/tf', self._msg, queue_size=100)  # tf2_ros's queue
+        return self._pub
+
     def wanted(self):
         """Whether /tf has a subscriber (else plugins need not build their transforms)."""
-        return self.pub.get_num_connections() > 0
+        return self._publisher().get_num_connections() > 0
 
     def sendTransform(self, transforms):
+        self._publisher()
         if isinstance(transforms, (list, tuple)):
             self.pending.extend(transforms)
         else:
@@ -168,12 +186,13 @@ class TfBatch:
         if not self.pending:
             return
         out, self.pending = self.pending, []
-        if self.pub.get_num_connections() > 0:
-            self.pub.publish(self._msg(transforms=out))
+        pub = self._pub
+        if pub is not None and pub.get_num_connections() > 0:
+            pub.publish(self._msg(transforms=out))
             self.messages += 1
 
     def shutdown(self):
-        close(self.pub)
+        close(self._pub)
 
 
 def close(*handles):

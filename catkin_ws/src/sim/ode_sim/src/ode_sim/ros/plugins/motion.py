@@ -1,0 +1,320 @@
+"""Model plugins that move things: libgazebo_ros_planar_move.so, libgazebo_ros_force.so,
+libgazebo_ros_vacuum_gripper.so (gazebo_plugins noetic-devel). Each acts before every physics
+step, as the originals act at WorldUpdateBegin.
+
+planar_move (GazeboRosPlanarMove): `robotNamespace` (default root), `commandTopic` (cmd_vel),
+`odometryTopic` (odom), `odometryFrame` (odom), `robotBaseFrame` (base_footprint),
+`odometryRate` (20 Hz), `cmdTimeout` (-1: none); missing frame/rate tags log the original's
+WARN. Every step the model gets the commanded velocity: (linear.x, linear.y) turned by the
+model's yaw, z 0, and angular.z about z. Odometry (nav_msgs/Odometry, odom -> base frame, both
+tf::resolve'd with the namespace's tf_prefix) and its TF go out when more than 1/odometryRate
+s of sim time passed: the model's pose, the twist from the pose difference since the last
+message (in the base frame), the original's fixed covariances.
+
+force (GazeboRosForce): `robotNamespace` (default root), `bodyName` and `topicName`
+(required: the original's FATAL line, the plugin does nothing). geometry_msgs/Wrench on
+topicName; the last one received is applied in the world frame at the body's centre of mass
+before every step until another arrives.
+
+vacuum_gripper (GazeboRosVacuumGripper): `robotNamespace` (default root), `bodyName` and
+`topicName` (required), `maxForce` (20 N), `maxDistance` (0.05 m), `minDistance` (0.01 m).
+Services `<ns>/on`, `<ns>/off` (std_srvs/Empty); topicName: std_msgs/Bool, whether it grasps,
+every step while subscribed. While on, every link of another model whose origin lies within
+maxDistance of the gripper link's origin takes the gripper link's velocities, is pulled by a
+force of min(1/d, maxForce) along the offset (in the held link's axes, as the original
+computes it) and, within minDistance, is moved onto the gripper's position.
+"""
+import math
+
+import numpy as np
+import rospy
+from geometry_msgs.msg import TransformStamped, Twist, Wrench
+from nav_msgs.msg import Odometry
+from std_msgs.msg import Bool
+from std_srvs.srv import Empty, EmptyResponse
+
+from ode_sim.ros.convert import fill_pose
+from ode_sim.ros.plugins.base import Plugin
+from ode_sim.ros.plugins.laser import tf_resolve
+from ode_sim.ros.plugins.rosio import close, subscribed
+from ode_sim.description.transforms import Pose
+
+
+def yaw_of(q):
+    x, y, z, w = q
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def _root_ns(plugin):
+    return plugin.params['robotNamespace'].strip() if plugin.has('robotNamespace') else ''
+
+
+def _tf_prefix(plugin):
+    """tf::getPrefixParam: the tf_prefix parameter searched from the plugin's namespace up."""
+    if not plugin.ctx.io.live:
+        return ''
+    try:
+        parts = [p for p in plugin.ns.split('/') if p]
+        for i in range(len(parts), -1, -1):
+            key = '/' + '/'.join(parts[:i] + ['tf_prefix'])
+            if rospy.has_param(key):
+                return str(rospy.get_param(key))
+    except Exception:                   # master gone: no prefix
+        return ''
+    return ''
+
+
+class PlanarMove(Plugin):
+    """libgazebo_ros_planar_move.so"""
+
+    def __init__(self, ctx, model, desc, sensor=None):
+        super().__init__(ctx, model, desc, sensor)
+        self.ns = _root_ns(self)
+        self.label = 'PlanarMovePlugin'
+        self.command_topic = self.param('commandTopic', 'cmd_vel', warn=False).strip()
+        self.odometry_topic = self.param('odometryTopic', 'odom', warn=False).strip()
+        self.odometry_frame = self._warned('odometryFrame', 'odom', '"odom"')
+        self.base_frame = self._warned('robotBaseFrame', 'base_footprint', '"base_footprint"')
+        if self.has('odometryRate'):
+            self.odometry_rate = self.param('odometryRate', 20.0, float)
+        else:
+            rospy.logwarn('PlanarMovePlugin (ns = %s) missing <odometryRate>, defaults to %f'
+                          % (self.ns, 20.0))
+            self.odometry_rate = 20.0
+        self.cmd_timeout = self.param('cmdTimeout', -1.0, float, warn=False)
+        prefix = _tf_prefix(self)
+        self.odom_frame_id = tf_resolve(prefix, self.odometry_frame)
+        self.base_frame_id = tf_resolve(prefix, self.base_frame)
+        self.cmd = (0.0, 0.0, 0.0)
+        self.last_cmd_time = ctx.time
+        self.last_odom_time = ctx.time
+        self.last_pose = model.pose()
+        self.sub = ctx.io.subscriber(self.topic(self.command_topic),
+                                     Twist,
+                                     self.on_cmd_vel, queue_size=1)
+        self.odom_pub = ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
+                                         queue_size=1)
+        if ctx.tf is not None:
+            ctx.tf.sendTransform([])    # advertises /tf, as the original's broadcaster does
+        self.odometries = 0
+
+    def _warned(self, tag, default, shown):
+        if not self.has(tag):
+            rospy.logwarn('PlanarMovePlugin (ns = %s) missing <%s>, defaults to %s'
+                          % (self.ns, tag, shown))
+            return default
+        return self.params[tag].strip()
+
+    def on_cmd_vel(self, msg):
+        self.cmd = (msg.linear.x, msg.linear.y, msg.angular.z)
+        self.last_cmd_time = self.ctx.time
+
+    def before_step(self):
+        t = self.ctx.time
+        if self.cmd_timeout > 0 and t - self.last_cmd_time > self.cmd_timeout:
+            self.cmd = (0.0, 0.0, 0.0)
+        x, y, rot = self.cmd
+        yaw = yaw_of(self.model.pose().q)
+        c, s = math.cos(yaw), math.sin(yaw)
+        self.model.set_twist((x * c - y * s, y * c + x * s, 0.0), (0.0, 0.0, rot))
+
+    def update(self):
+        if self.odometry_rate <= 0:
+            return
+        t = self.ctx.time
+        dt = t - self.last_odom_time
+        if dt > 1.0 / self.odometry_rate + 1e-9:     # Gazebo's exact sec/nsec time
+            self.publish_odometry(dt)
+            self.last_odom_time = t
+
+    def publish_odometry(self, dt):
+        pose = self.model.pose()
+        stamp = self.ctx.now()
+        odom = Odometry()
+        odom.header.stamp = stamp
+        odom.header.frame_id = self.odom_frame_id
+        odom.child_frame_id = self.base_frame_id
+        fill_pose(odom.pose.pose, pose)
+        odom.pose.pose.position.z = 0.0          # the original fills x and y only
+        cov = [0.0] * 36
+        cov[0], cov[7], cov[14], cov[21], cov[28], cov[35] = (1e-5, 1e-5, 1e12, 1e12, 1e12,
+                                                              1e-3)
+        odom.pose.covariance = cov
+        vx = (pose.p[0] - self.last_pose.p[0]) / dt
+        vy = (pose.p[1] - self.last_pose.p[1]) / dt
+        rot = self.cmd[2]
+        if rot > math.pi / dt:
+            odom.twist.twist.angular.z = rot
+        else:
+            last, cur = yaw_of(self.last_pose.q), yaw_of(pose.q)
+            while cur < last - math.pi:
+                cur += 2 * math.pi
+            while cur > last + math.pi:
+                cur -= 2 * math.pi
+            odom.twist.twist.angular.z = (cur - last) / dt
+        self.last_pose = pose
+        yaw = yaw_of(pose.q)
+        odom.twist.twist.linear.x = math.cos(yaw) * vx + math.sin(yaw) * vy
+        odom.twist.twist.linear.y = math.cos(yaw) * vy - math.sin(yaw) * vx
+        if self.ctx.tf is not None:
+            tr = TransformStamped()
+            tr.header.stamp = stamp
+            tr.header.frame_id = self.odom_frame_id
+            tr.child_frame_id = self.base_frame_id
+            tr.transform.translation.x, tr.transform.translation.y, \
+                tr.transform.translation.z = (float(v) for v in pose.p)
+            q = tr.transform.rotation
+            q.x, q.y, q.z, q.w = (float(v) for v in pose.q)
+            self.ctx.tf.sendTransform([tr])
+        self.odom_pub.publish(odom)
+        self.odometries += 1
+
+    def reset(self):
+        super().reset()
+        self.cmd = (0.0, 0.0, 0.0)
+        self.last_odom_time = self.ctx.time
+        self.last_pose = self.model.pose()
+
+    def shutdown(self):
+        close(self.sub, self.odom_pub)
+
+
+class Force(Plugin):
+    """libgazebo_ros_force.so"""
+
+    def __init__(self, ctx, model, desc, sensor=None):
+        super().__init__(ctx, model, desc, sensor)
+        self.ns = _root_ns(self)
+        self.body = None
+        self.sub = None
+        self.wrench = (np.zeros(3), np.zeros(3))
+        if not self.has('bodyName'):
+            rospy.logfatal('force plugin missing <bodyName>, cannot proceed')
+            return
+        name = self.params['bodyName'].strip()
+        if name not in model.links:
+            rospy.logfatal('gazebo_ros_force plugin error: bodyName: %s does not exist' % name)
+            return
+        if not self.has('topicName'):
+            rospy.logfatal('force plugin missing <topicName>, cannot proceed')
+            return
+        self.body = model.links[name]
+        self.sub = ctx.io.subscriber(self.topic(self.params['topicName'].strip()), Wrench,
+                                     self.on_wrench, queue_size=1)
+
+    def on_wrench(self, msg):
+        self.wrench = (np.array([msg.force.x, msg.force.y, msg.force.z]),
+                       np.array([msg.torque.x, msg.torque.y, msg.torque.z]))
+
+    def before_step(self):
+        if self.body is None:
+            return
+        f, tau = self.wrench
+        if f.any() or tau.any():
+            self.body.add_force(f)
+            self.body.add_torque(tau)
+
+    def shutdown(self):
+        close(self.sub)
+
+
+class VacuumGripper(Plugin):
+    """libgazebo_ros_vacuum_gripper.so"""
+
+    def __init__(self, ctx, model, desc, sensor=None):
+        super().__init__(ctx, model, desc, sensor)
+        self.ns = _root_ns(self)
+        self.on = False
+        self.link_obj = None
+        self.pub = None
+        self.services = []
+        self.grasping = False
+        if not self.has('bodyName'):
+            rospy.logfatal('vacuum_gripper plugin missing <bodyName>, cannot proceed')
+            return
+        name = self.params['bodyName'].strip()
+        if name not in model.links:
+            rospy.logfatal('gazebo_ros_vacuum_gripper plugin error: link named: %s does not '
+                           'exist' % name)
+            rospy.logfatal('gazebo_ros_vacuum_gripper plugin error: You should check it '
+                           'exists and is not connected with fixed joint')
+            rospy.logfatal('gazebo_ros_vacuum_gripper plugin error: Found links are: %s'
+                           % ''.join(' ' + n for n in model.links))
+            return
+        if not self.has('topicName'):
+            rospy.logfatal('vacuum_gripper plugin missing <serviceName>, cannot proceed')
+            return
+        self.link_obj = model.links[name]
+        self.max_force = self.param('maxForce', 20.0, float, warn=False)
+        self.max_distance = self.param('maxDistance', 0.05, float, warn=False)
+        self.min_distance = self.param('minDistance', 0.01, float, warn=False)
+        self.pub = ctx.io.publisher(self.topic(self.params['topicName'].strip()), Bool,
+                                    queue_size=1)
+        self.services = [ctx.io.service(self.topic('on'), Empty, self.on_service),
+                         ctx.io.service(self.topic('off'), Empty, self.off_service)]
+        rospy.loginfo('Loaded gazebo_ros_vacuum_gripper')
+
+    def on_service(self, _req):
+        if self.on:
+            rospy.logwarn("gazebo_ros_vacuum_gripper: already status is 'on'")
+        else:
+            self.on = True
+            rospy.loginfo('gazebo_ros_vacuum_gripper: status: off -> on')
+        return EmptyResponse()
+
+    def off_service(self, _req):
+        if self.on:
+            self.on = False
+            rospy.loginfo('gazebo_ros_vacuum_gripper: status: on -> off')
+        else:
+            rospy.logwarn("gazebo_ros_vacuum_gripper: already status is 'off'")
+        return EmptyResponse()
+
+    def before_step(self):
+        if self.link_obj is None:
+            return
+        grasping = False
+        if self.on:
+            grasping = self.hold()
+        self.grasping = grasping
+        if subscribed(self.pub):
+            self.pub.publish(Bool(data=grasping))
+
+    def hold(self):
+        """One step of the vacuum: True when some link is within reach."""
+        gripper = self.link_obj
+        gp = gripper.pose()
+        lin, ang = gripper.velocity()
+        held = False
+        for m in list(self.ctx.physics.models.values()):
+            if m is self.model or m.name == gripper.name:
+                continue
+            for link in m.links.values():
+                if link.body is None:
+                    continue
+                lp = link.pose()
+                diff = lp.inverse().rotate(gp.p - lp.p)     # parent_pose - link_pose
+                norm = float(np.linalg.norm(diff))
+                if norm > self.max_distance:
+                    continue
+                body = link.body
+                body.setLinearVel(tuple(float(v) for v in lin))
+                body.setAngularVel(tuple(float(v) for v in ang))
+                if norm <= self.min_distance:
+                    link.set_state(Pose(gp.p, lp.q), lin, ang)
+                force = min(1.0 / norm, self.max_force) if norm > 0 else self.max_force
+                if norm > 0:
+                    link.add_force(force * diff / norm)
+                link.wake()
+                held = True
+        return held
+
+    def shutdown(self):
+        close(self.pub, *self.services)
+
+
+PLUGINS = {
+    'libgazebo_ros_planar_move.so': PlanarMove,
+    'libgazebo_ros_force.so': Force,
+    'libgazebo_ros_vacuum_gripper.so': VacuumGripper,
+}

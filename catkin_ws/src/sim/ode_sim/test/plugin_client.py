@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""A user of the gazebo_plugins for test_plugins_gazebo_more.py: `plugin_client.py MODE` reads
+a plugin's topics / calls its services against a running sim_node, reads the simulated truth
+(/gazebo/get_model_state, /gazebo/model_states) and prints one JSON object."""
+import json
+import sys
+import time
+
+import rospy
+from gazebo_msgs import msg as gm
+from gazebo_msgs import srv as gs
+from geometry_msgs.msg import Twist, Wrench
+from nav_msgs.msg import Odometry
+from sensor_msgs.msg import Range
+from std_msgs.msg import Bool
+from std_srvs.srv import Empty
+
+
+def svc(name, typ):
+    rospy.wait_for_service(name, timeout=60)
+    return rospy.ServiceProxy(name, typ)
+
+
+def sim_time():
+    return svc('/gazebo/get_world_properties', gs.GetWorldProperties)().sim_time
+
+
+def run_for(seconds, timeout=120.0):
+    """Unpause for `seconds` of sim time, then pause."""
+    t_end = sim_time() + seconds
+    svc('/gazebo/unpause_physics', Empty)()
+    deadline = time.monotonic() + timeout
+    while sim_time() < t_end:
+        if time.monotonic() > deadline:
+            raise SystemExit('sim time did not advance')
+        time.sleep(0.02)
+    svc('/gazebo/pause_physics', Empty)()
+
+
+def state(name):
+    r = svc('/gazebo/get_model_state', gs.GetModelState)(name, '')
+    p, v = r.pose.position, r.twist.linear
+    return {'xyz': [p.x, p.y, p.z], 'vel': [v.x, v.y, v.z], 'w': r.twist.angular.z,
+            'q': [r.pose.orientation.x, r.pose.orientation.y, r.pose.orientation.z,
+                  r.pose.orientation.w]}
+
+
+def latest(topic, typ, timeout=60.0):
+    return rospy.wait_for_message(topic, typ, timeout=timeout)
+
+
+def mode_range():
+    out = {}
+    svc('/gazebo/unpause_physics', Empty)()
+    m = latest('/sonar/range', Range)
+    out['near'] = [m.range, m.min_range, m.max_range, m.field_of_view, m.radiation_type,
+                   m.header.frame_id]
+    req = gm.ModelState(model_name='wall', reference_frame='world')
+    req.pose.position.x, req.pose.position.z = 1.2, 0.5
+    req.pose.orientation.w = 1.0
+    svc('/gazebo/set_model_state', gs.SetModelState)(req)
+    t0 = sim_time()
+    while True:
+        m = latest('/sonar/range', Range)
+        if m.header.stamp.to_sec() > t0 + 0.1:
+            break
+    out['moved'] = m.range
+    req.pose.position.x = 20.0
+    svc('/gazebo/set_model_state', gs.SetModelState)(req)
+    t0 = sim_time()
+    while True:
+        m = latest('/sonar/range', Range)
+        if m.header.stamp.to_sec() > t0 + 0.1:
+            break
+    out['nothing'] = m.range
+    ir = latest('/ir/range', Range)
+    out['ir'] = [ir.radiation_type, ir.header.frame_id]
+    return out
+
+
+def mode_planar():
+    """planar_move driven by cmd_vel; odometry and p3d against the model's true state."""
+    out = {}
+    odoms, truths, states = [], [], []
+    rospy.Subscriber('/gazebo/model_states', gm.ModelStates, states.append)
+    rospy.Subscriber('/odom', Odometry, odoms.append)
+    rospy.Subscriber('/mover/ground_truth', Odometry, truths.append)
+    pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
+    cmd = Twist()
+    cmd.linear.x, cmd.linear.y = 0.5, 0.2
+    pub.publish(cmd)
+    time.sleep(1.0)
+    start, out['t_start'] = state('mover'), sim_time()
+    run_for(2.0)
+    end = state('mover')
+    t_end = sim_time()
+    time.sleep(0.5)
+    o, g = odoms[-1], truths[-1]
+    out['start'], out['end'], out['t_end'] = start, end, t_end
+    out['odom'] = {'stamp': o.header.stamp.to_sec(), 'frame': o.header.frame_id,
+                   'child': o.child_frame_id,
+                   'xy': [o.pose.pose.position.x, o.pose.pose.position.y],
+                   'vel': [o.twist.twist.linear.x, o.twist.twist.linear.y,
+                           o.twist.twist.angular.z]}
+    out['p3d'] = {'stamp': g.header.stamp.to_sec(), 'frame': g.header.frame_id,
+                  'child': g.child_frame_id,
+                  'xyz': [g.pose.pose.position.x, g.pose.pose.position.y,
+                          g.pose.pose.position.z],
+                  'vel': [g.twist.twist.linear.x, g.twist.twist.linear.y]}
+    out['odom_n'] = len(odoms)
+    out['odom_stamps'] = [m.header.stamp.to_sec() for m in odoms[-5:]]
+    # /gazebo/model_states of the last step before the pause
+    ms = states[-1]
+    i = ms.name.index('mover')
+    out['model_states'] = [ms.pose[i].position.x, ms.pose[i].position.y, ms.pose[i].position.z]
+    # turn on the spot
+    cmd = Twist()
+    cmd.angular.z = 0.5
+    pub.publish(cmd)
+    time.sleep(0.5)
+    run_for(1.0)
+    out['turned'] = state('mover')
+    out['odom_w'] = odoms[-1].twist.twist.angular.z
+    return out
+
+
+def mode_force():
+    out = {}
+    pub = rospy.Publisher('/push', Wrench, queue_size=1, latch=True)
+    w = Wrench()
+    w.force.x = 2.0
+    pub.publish(w)
+    time.sleep(1.0)
+    s1, t1 = state('puck'), sim_time()
+    run_for(1.0)
+    s2, t2 = state('puck'), sim_time()
+    out['accel'] = (s2['vel'][0] - s1['vel'][0]) / (t2 - t1)
+    pub.publish(Wrench())
+    time.sleep(1.0)
+    s3 = state('puck')
+    run_for(0.5)
+    s4 = state('puck')
+    out['coast'] = [s3['vel'][0], s4['vel'][0]]
+    return out
+
+
+def mode_gripper():
+    out = {}
+    grasp = []
+    rospy.Subscriber('/gripper/grasping', Bool, lambda m: grasp.append(m.data))
+    svc('/gripper/on', Empty)()
+    run_for(1.0)
+    out['held'] = state('parcel')['xyz']
+    out['grasping_on'] = grasp[-1] if grasp else None
+    svc('/gripper/off', Empty)()
+    run_for(1.0)
+    out['dropped'] = state('parcel')['xyz']
+    time.sleep(0.3)
+    run_for(0.1)
+    time.sleep(0.3)
+    out['grasping_off'] = grasp[-1] if grasp else None
+    # on again with the parcel far below: nothing within reach, it stays on the ground
+    svc('/gripper/on', Empty)()
+    run_for(0.5)
+    out['out_of_reach'] = state('parcel')['xyz']
+    time.sleep(0.3)
+    out['grasping_far'] = grasp[-1] if grasp else None
+    return out
+
+
+def main():
+    rospy.init_node('plugin_client', anonymous=True)
+    out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
+           'gripper': mode_gripper}[sys.argv[1]]()
+    print(json.dumps(out))
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,196 @@
+"""gazebo_plugins beyond the course's first ones, each in an SDF world with the original's tags,
+driven from a client process as a user would, and checked against the simulated truth:
+range (a wall at known distances), planar_move and p3d (the model's state), force (the
+acceleration F/m), vacuum gripper (holds a box only while on)."""
+import json
+import os
+import subprocess
+
+import pytest
+
+from course_testing import Proc
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+WORLD = """<?xml version="1.0"?>
+<sdf version="1.6">
+  <world name="default">
+    <include><uri>model://ground_plane</uri></include>
+    <include><uri>model://sun</uri></include>
+    {models}
+  </world>
+</sdf>
+"""
+
+BOX_LINK = """<link name="{link}">{extra}
+  <inertial><mass>{mass}</mass><inertia><ixx>{i}</ixx><iyy>{i}</iyy><izz>{i}</izz></inertia></inertial>
+  <collision name="c"><geometry><box><size>{size}</size></box></geometry></collision>
+  <visual name="v"><geometry><box><size>{size}</size></box></geometry></visual>
+  {sensors}
+</link>"""
+
+
+def box_link(link='link', mass=1.0, size='0.2 0.2 0.2', extra='', sensors='', i=0.01):
+    return BOX_LINK.format(link=link, mass=mass, size=size, extra=extra, sensors=sensors, i=i)
+
+
+def sonar_sensor(name, radiation, hfov=0.2):
+    tag = '<radiation>%s</radiation>' % radiation if radiation else ''
+    return """<sensor type="ray" name="{n}">
+  <update_rate>20</update_rate>
+  <ray><scan>
+    <horizontal><samples>5</samples><resolution>1</resolution><min_angle>-{h}</min_angle><max_angle>{h}</max_angle></horizontal>
+    <vertical><samples>3</samples><resolution>1</resolution><min_angle>-{h}</min_angle><max_angle>{h}</max_angle></vertical>
+  </scan><range><min>0.02</min><max>4.0</max><resolution>0.01</resolution></range></ray>
+  <plugin name="{n}_plugin" filename="libgazebo_ros_range.so">
+    <gaussianNoise>0.0</gaussianNoise>
+    <alwaysOn>true</alwaysOn>
+    <updateRate>20</updateRate>
+    <topicName>/{n}/range</topicName>
+    <frameName>{n}_link</frameName>
+    {tag}
+    <fov>{fov}</fov>
+  </plugin>
+</sensor>""".format(n=name, h=hfov / 2, tag=tag, fov=hfov)
+
+
+RANGE_MODELS = """
+<model name="wall"><pose>2.1 0 0.5 0 0 0</pose>
+  {wall}
+</model>
+<model name="sonar"><static>true</static><pose>0 0 0.5 0 0 0</pose>
+  {sonar}
+</model>
+<model name="ir"><static>true</static><pose>0 3 0.5 0 0 3.14159</pose>
+  {ir}
+</model>
+""".format(wall=box_link(mass=50.0, size='0.2 4 1', i=10.0),
+           sonar=box_link(size='0.02 0.02 0.02', sensors=sonar_sensor('sonar', 'ultrasound')),
+           ir=box_link(size='0.02 0.02 0.02', sensors=sonar_sensor('ir', 'infrared')))
+
+PLANAR_MODELS = """
+<model name="mover"><pose>0 0 0.5 0 0 0</pose>
+  {link}
+  <plugin name="object_controller" filename="libgazebo_ros_planar_move.so">
+    <commandTopic>cmd_vel</commandTopic>
+    <odometryTopic>odom</odometryTopic>
+    <odometryFrame>odom</odometryFrame>
+    <odometryRate>20.0</odometryRate>
+    <robotBaseFrame>base_footprint</robotBaseFrame>
+  </plugin>
+  <plugin name="p3d" filename="libgazebo_ros_p3d.so">
+    <alwaysOn>true</alwaysOn>
+    <updateRate>50.0</updateRate>
+    <bodyName>link</bodyName>
+    <topicName>/mover/ground_truth</topicName>
+    <gaussianNoise>0.0</gaussianNoise>
+    <frameName>world</frameName>
+  </plugin>
+</model>
+""".format(link=box_link(mass=10.0, i=0.1, extra='<gravity>false</gravity>'))
+
+FORCE_MODELS = """
+<model name="puck"><pose>0 0 1.0 0 0 0</pose>
+  {link}
+  <plugin name="push" filename="libgazebo_ros_force.so">
+    <bodyName>link</bodyName>
+    <topicName>push</topicName>
+  </plugin>
+</model>
+""".format(link=box_link(mass=0.5, extra='<gravity>false</gravity>'))
+
+GRIPPER_MODELS = """
+<model name="arm"><static>true</static><pose>0 0 1.0 0 0 0</pose>
+  {hand}
+  <plugin name="vacuum" filename="libgazebo_ros_vacuum_gripper.so">
+    <robotNamespace>/gripper</robotNamespace>
+    <bodyName>hand</bodyName>
+    <topicName>grasping</topicName>
+    <maxForce>50</maxForce>
+  </plugin>
+</model>
+<model name="parcel"><pose>0 0 0.96 0 0 0</pose>
+  {parcel}
+</model>
+""".format(hand=box_link(link='hand', size='0.05 0.05 0.02'),
+           parcel=box_link(mass=0.5, size='0.05 0.05 0.05', i=0.001))
+
+
+def run(roscore, tmp_path, models, mode, *sim_args):
+    world = tmp_path / 'w.world'
+    world.write_text(WORLD.format(models=models))
+    subprocess.run(['rosparam', 'set', '/use_sim_time', 'true'], env=roscore.env, check=True,
+                   timeout=120)
+    node = Proc(['rosrun', 'ode_sim', 'sim_node', str(world)] + list(sim_args),
+                env=roscore.env, log=str(tmp_path / 'sim.log'))
+    try:
+        res = subprocess.run(['/usr/bin/python3', os.path.join(HERE, 'plugin_client.py'), mode],
+                             env=roscore.env, capture_output=True, text=True, timeout=300)
+    finally:
+        node.stop()
+    assert res.returncode == 0, res.stdout + res.stderr + node.output()[-4000:]
+    return json.loads(res.stdout.strip().splitlines()[-1]), node.output()
+
+
+def test_range_sees_the_wall_at_its_distance(roscore, tmp_path):
+    out, log = run(roscore, tmp_path, RANGE_MODELS, 'range')
+    rng, rmin, rmax, fov, radiation, frame = out['near']
+    # the wall's near face at x = 2.0; the sonar's centre ray hits it square on
+    assert rng == pytest.approx(2.0, abs=1e-3)
+    assert (rmin, rmax, radiation, frame) == (pytest.approx(0.02), pytest.approx(4.0), 0,
+                                              'sonar_link')
+    assert fov == pytest.approx(0.2)
+    assert out['moved'] == pytest.approx(1.1, abs=1e-3)
+    assert out['nothing'] == pytest.approx(4.0)              # nothing within reach: max_range
+    assert out['ir'] == [1, 'ir_link']                        # INFRARED
+    assert 'Range plugin missing <radiation>' not in log
+
+
+def test_planar_move_odometry_and_p3d_follow_the_model(roscore, tmp_path):
+    out, log = run(roscore, tmp_path, PLANAR_MODELS, 'planar', '-u')
+    start, end, t_end = out['start'], out['end'], out['t_end']
+    dt = t_end - out['t_start']
+    # the model (floating: no ground friction) moved at the commanded (0.5, 0.2) m/s, yaw 0
+    assert end['vel'][:2] == pytest.approx([0.5, 0.2], abs=1e-3)
+    assert end['xyz'][0] - start['xyz'][0] == pytest.approx(0.5 * dt, abs=0.01)
+    assert end['xyz'][1] - start['xyz'][1] == pytest.approx(0.2 * dt, abs=0.01)
+    o = out['odom']
+    assert (o['frame'], o['child']) == ('odom', 'base_footprint')
+    lag = t_end - o['stamp']
+    assert 0 <= lag <= 0.051
+    assert o['xy'] == pytest.approx([end['xyz'][0] - 0.5 * lag, end['xyz'][1] - 0.2 * lag],
+                                    abs=1e-3)
+    assert o['vel'] == pytest.approx([0.5, 0.2, 0.0], abs=2e-3)
+    # odometry every 1/20 s and a step (the original publishes once MORE than the period passed)
+    stamps = out['odom_stamps']
+    gaps = [b - a for a, b in zip(stamps, stamps[1:])]
+    assert all(g == pytest.approx(0.051, abs=1e-6) for g in gaps), gaps
+    g = out['p3d']
+    assert (g['frame'], g['child']) == ('world', 'link')
+    lag = t_end - g['stamp']
+    assert 0 <= lag <= 0.021
+    truth = out['model_states']
+    assert g['xyz'] == pytest.approx([truth[0] - 0.5 * lag, truth[1] - 0.2 * lag, truth[2]],
+                                     abs=1e-3)
+    assert g['vel'] == pytest.approx([0.5, 0.2], abs=1e-3)
+    turned = out['turned']
+    assert turned['w'] == pytest.approx(0.5, abs=1e-3)
+    assert out['odom_w'] == pytest.approx(0.5, abs=0.01)
+
+
+def test_force_accelerates_by_f_over_m(roscore, tmp_path):
+    out, _log = run(roscore, tmp_path, FORCE_MODELS, 'force', '-u')
+    assert out['accel'] == pytest.approx(2.0 / 0.5, rel=0.01)
+    v3, v4 = out['coast']
+    assert v3 > 3.0 and v4 == pytest.approx(v3, abs=1e-6)    # no force: constant velocity
+
+
+def test_vacuum_gripper_holds_the_box_only_while_on(roscore, tmp_path):
+    out, log = run(roscore, tmp_path, GRIPPER_MODELS, 'gripper', '-u')
+    assert out['held'][2] > 0.9                  # still at the hand (z = 1.0), not fallen
+    assert out['grasping_on'] is True
+    assert out['dropped'][2] == pytest.approx(0.025, abs=0.01)    # on the ground
+    assert out['grasping_off'] is False
+    assert out['out_of_reach'][2] == pytest.approx(0.025, abs=0.01)
+    assert out['grasping_far'] is False
+    assert 'gazebo_ros_vacuum_gripper: status: off -> on' in log
