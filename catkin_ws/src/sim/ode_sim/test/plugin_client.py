@@ -168,10 +168,42 @@ def mode_gripper():
     return out
 
 
+def mode_block():
+    from sensor_msgs.msg import PointCloud
+    svc('/gazebo/unpause_physics', Empty)()
+    m = latest('/block/cloud', PointCloud)
+    return {'frame': m.header.frame_id, 'points': [[p.x, p.y, p.z] for p in m.points],
+            'channels': [list(c.values) for c in m.channels]}
+
+
+def mode_trajectory():
+    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+    out = {}
+    joint = svc('/gazebo/get_joint_properties', gs.GetJointProperties)
+    pub = rospy.Publisher('/set_joint_trajectory', JointTrajectory, queue_size=1, latch=True)
+    time.sleep(1.0)
+    traj = JointTrajectory()
+    traj.header.frame_id = 'world'
+    traj.joint_names = ['swivel']
+    traj.points = [JointTrajectoryPoint(positions=[0.5], time_from_start=rospy.Duration(0.2)),
+                   JointTrajectoryPoint(positions=[1.0], time_from_start=rospy.Duration(0.3))]
+    t0 = sim_time()
+    pub.publish(traj)
+    time.sleep(1.0)
+    base = state('turret')['xyz']
+    run_for(0.1)
+    out['first'] = [sim_time() - t0, joint('swivel').position[0]]
+    run_for(0.3)
+    out['second'] = [sim_time() - t0, joint('swivel').position[0]]
+    out['base_kept'] = [base, state('turret')['xyz']]
+    return out
+
+
 def main():
     rospy.init_node('plugin_client', anonymous=True)
     out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
-           'gripper': mode_gripper}[sys.argv[1]]()
+           'gripper': mode_gripper, 'block': mode_block,
+           'trajectory': mode_trajectory}[sys.argv[1]]()
     print(json.dumps(out))
 
 

@@ -116,6 +116,45 @@ GRIPPER_MODELS = """
            parcel=box_link(mass=0.5, size='0.05 0.05 0.05', i=0.001))
 
 
+BLOCK_SENSOR = """<sensor type="ray" name="block">
+  <update_rate>10</update_rate>
+  <ray><scan>
+    <horizontal><samples>5</samples><resolution>1</resolution><min_angle>-0.3</min_angle><max_angle>0.3</max_angle></horizontal>
+    <vertical><samples>3</samples><resolution>1</resolution><min_angle>-0.2</min_angle><max_angle>0.2</max_angle></vertical>
+  </scan><range><min>0.05</min><max>6.0</max><resolution>0.01</resolution></range></ray>
+  <plugin name="block_laser" filename="libgazebo_ros_block_laser.so">
+    <topicName>/block/cloud</topicName>
+    <frameName>block_link</frameName>
+    <gaussianNoise>0.0</gaussianNoise>
+  </plugin>
+</sensor>"""
+
+BLOCK_MODELS = """
+<model name="wall"><static>true</static><pose>2.1 0 1 0 0 0</pose>
+  <link name="link"><collision name="c"><geometry><box><size>0.2 8 2</size></box></geometry></collision></link>
+</model>
+<model name="scanner"><static>true</static><pose>0 0 1 0 0 0</pose>
+  {link}
+</model>
+""".format(link=box_link(size='0.02 0.02 0.02', sensors=BLOCK_SENSOR))
+
+TRAJECTORY_MODELS = """
+<model name="turret"><pose>1 1 0.1 0 0 0</pose>
+  {base}
+  {top}
+  <joint name="anchor" type="fixed"><parent>world</parent><child>link</child></joint>
+  <joint name="swivel" type="revolute"><parent>link</parent><child>top</child>
+    <pose>0 0 0 0 0 0</pose>
+    <axis><xyz>0 0 1</xyz><limit><lower>-3</lower><upper>3</upper></limit></axis></joint>
+  <plugin name="trajectory" filename="libgazebo_ros_joint_pose_trajectory.so">
+    <topicName>set_joint_trajectory</topicName>
+    <updateRate>100</updateRate>
+  </plugin>
+</model>
+""".format(base=box_link(), top=box_link(link='top', size='0.5 0.05 0.05',
+                                         extra='<pose>0 0 0.2 0 0 0</pose>'))
+
+
 def run(roscore, tmp_path, models, mode, *sim_args):
     world = tmp_path / 'w.world'
     world.write_text(WORLD.format(models=models))
@@ -194,3 +233,38 @@ def test_vacuum_gripper_holds_the_box_only_while_on(roscore, tmp_path):
     assert out['out_of_reach'][2] == pytest.approx(0.025, abs=0.01)
     assert out['grasping_far'] is False
     assert 'gazebo_ros_vacuum_gripper: status: off -> on' in log
+
+
+def test_block_laser_points_lie_on_the_wall(roscore, tmp_path):
+    out, _log = run(roscore, tmp_path, BLOCK_MODELS, 'block')
+    assert out['frame'] == 'block_link'
+    pts = out['points']
+    assert len(pts) == 15 and len(out['channels']) == 1 and len(out['channels'][0]) == 15
+    # every ray hits the wall's face x = 2.0 (range 2 / (cos p cos y)); the original places a
+    # point in the direction halfway to the next ray (yaw (ja + jb) / 2 steps, pitch likewise),
+    # z mirrored
+    import math
+    yaws = [-0.3 + 0.15 * k for k in range(5)]
+    pitches = [-0.2, 0.0, 0.2]
+    expect = []
+    for j in range(3):
+        for i in range(5):
+            r = 2.0 / (math.cos(pitches[j]) * math.cos(yaws[i]))
+            y = 0.5 * (yaws[i] + yaws[min(i + 1, 4)])
+            p = 0.5 * (pitches[j] + pitches[min(j + 1, 2)])
+            expect.append([r * math.cos(p) * math.cos(y), r * math.cos(p) * math.sin(y),
+                           -r * math.sin(p)])
+    for got, want in zip(pts, expect):
+        assert got == pytest.approx(want, abs=2e-3)
+    assert pts[-1][0] == pytest.approx(2.0, abs=1e-3)     # the last ray: no half step
+
+
+def test_joint_pose_trajectory_sets_the_joints_at_the_points_times(roscore, tmp_path):
+    out, log = run(roscore, tmp_path, TRAJECTORY_MODELS, 'trajectory', '-u')
+    t1, q1 = out['first']
+    t2, q2 = out['second']
+    assert t1 < 0.2 and q1 == pytest.approx(0.5, abs=1e-3)     # the first point at once
+    assert t2 > 0.2 and q2 == pytest.approx(1.0, abs=1e-3)     # the second 0.2 s later
+    base, after = out['base_kept']
+    assert after == pytest.approx(base, abs=1e-3)
+    assert 'updating configuration [1/2]' in log

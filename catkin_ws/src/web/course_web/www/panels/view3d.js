@@ -19,6 +19,9 @@ const DISPLAYS = {
 const THROTTLE = { 'sensor_msgs/PointCloud2': 200, 'nav_msgs/OccupancyGrid': 1000, 'sensor_msgs/LaserScan': 100 };
 // topics that re-send the whole scene each time (ode_sim's world, ~1 MB): every 2 s is enough
 const SNAPSHOT_TOPICS = { '/gazebo/scene_markers': 2000 };
+// offered even before anyone publishes them: ode_sim advertises its scene markers only once
+// something subscribes (Gazebo has no such topic; ode_sim's README)
+const ALWAYS_OFFERED = { '/gazebo/scene_markers': 'visualization_msgs/MarkerArray' };
 const FRAME_MS = 100;   // at most 10 frames per second, and only when something changed
 const FIXED_PREFERENCE = ['map', 'odom', 'world', 'base_footprint', 'base_link'];
 const BASE_FRAMES = ['base_footprint', 'base_link'];
@@ -96,7 +99,7 @@ export default {
       }
     };
     const refresh = async () => {
-      const types = await topicTypes(ros);
+      const types = { ...ALWAYS_OFFERED, ...(await topicTypes(ros)) };
       for (const [topic, type] of Object.entries(types).sort()) {
         if (!DISPLAYS[type] || displays.has(topic)) continue;
         const box = el('input', { type: 'checkbox', checked: wanted[topic] ?? true });

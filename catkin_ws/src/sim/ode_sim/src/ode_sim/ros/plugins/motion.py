@@ -23,6 +23,15 @@ every step while subscribed. While on, every link of another model whose origin 
 maxDistance of the gripper link's origin takes the gripper link's velocities, is pulled by a
 force of min(1/d, maxForce) along the offset (in the held link's axes, as the original
 computes it) and, within minDistance, is moved onto the gripper's position.
+
+joint_pose_trajectory (GazeboRosJointPoseTrajectory): `robotNamespace` (default root),
+`topicName` (set_joint_trajectory), `serviceName` (read; the original builds its service only
+with ENABLE_SERVICE, so neither offers it), `updateRate` (INFO when missing; unused, as in the
+original). trajectory_msgs/JointTrajectory on topicName; header.frame_id "world", "map" or
+"/map" keeps the model's pose, a link name ("model::link" or unique) keeps that link where it
+is. From max(header.stamp, now) on, each step applies the next point's positions (joints set
+kinematically, velocities zeroed) and moves the start on by that point's time_from_start (the
+original's accumulation), until the points are used up.
 """
 import math
 
@@ -313,7 +322,88 @@ class VacuumGripper(Plugin):
         close(self.pub, *self.services)
 
 
+class JointPoseTrajectory(Plugin):
+    """libgazebo_ros_joint_pose_trajectory.so"""
+
+    def __init__(self, ctx, model, desc, sensor=None):
+        super().__init__(ctx, model, desc, sensor)
+        from trajectory_msgs.msg import JointTrajectory
+        self.ns = _root_ns(self)
+        topic = self.param('topicName', 'set_joint_trajectory', warn=False).strip()
+        self.service_name = self.param('serviceName', 'set_joint_trajectory', warn=False)
+        if not self.has('updateRate'):
+            rospy.loginfo('joint trajectory plugin missing <updateRate>, defaults to 0.0 (as '
+                          'fast as possible)')
+        self.target = model
+        self.reference = None
+        self.joints = []
+        self.points = []
+        self.index = 0
+        self.start = 0.0
+        self.active = False
+        self.sub = (ctx.io.subscriber(self.topic(topic), JointTrajectory, self.on_trajectory,
+                                      queue_size=100) if topic else None)
+
+    def _find_link(self, name):
+        physics = self.ctx.physics
+        if '::' in name:
+            mname, lname = name.split('::', 1)
+            m = physics.models.get(mname)
+            return m.links.get(lname) if m else None
+        found = [m.links[name] for m in physics.models.values() if name in m.links]
+        return found[0] if found else None
+
+    def on_trajectory(self, msg):
+        ref = msg.header.frame_id
+        reference = None
+        target = self.model
+        if ref not in ('world', '/map', 'map'):
+            reference = self._find_link(ref)
+            if reference is None:
+                rospy.logerr('ros_joint_trajectory plugin needs a reference link [%s] as '
+                             'frame_id, aborting.' % ref)
+                return
+            target = reference.model
+        points = [(p.time_from_start.to_sec(), list(p.positions)) for p in msg.points]
+        start = max(msg.header.stamp.to_sec(), self.ctx.time)
+        # one assignment each: the simulation thread reads them together
+        self.target, self.reference = target, reference
+        self.joints, self.points, self.index, self.start = list(msg.joint_names), points, 0, \
+            start
+        self.active = True
+
+    def before_step(self):
+        if not self.active:
+            return
+        t = self.ctx.time
+        if t + 1e-9 < self.start:
+            return
+        if self.index >= len(self.points):
+            self.active = False
+            self.reference = None
+            return
+        tfs, positions = self.points[self.index]
+        rospy.loginfo('time [%f] updating configuration [%d/%d]'
+                      % (t, self.index, len(self.points)))
+        if len(positions) == len(self.joints):
+            target = self.target
+            before = (self.reference or target).pose()
+            known = {n: v for n, v in zip(self.joints, positions) if n in target.joints}
+            target.set_configuration(known)
+            after = (self.reference or target).pose()
+            target.set_pose(before * after.inverse() * target.pose())
+        else:
+            rospy.logerr('point[%u] in JointTrajectory has different number of joint names[%u] '
+                         'and positions[%u].' % (self.index, len(self.joints), len(positions)))
+        self.start += tfs
+        self.index += 1
+
+    def shutdown(self):
+        close(self.sub)
+
+
 PLUGINS = {
+    'libgazebo_ros_joint_pose_trajectory.so': JointPoseTrajectory,
     'libgazebo_ros_planar_move.so': PlanarMove,
     'libgazebo_ros_force.so': Force,
     'libgazebo_ros_vacuum_gripper.so': VacuumGripper,
