@@ -277,6 +277,10 @@ def test_limits_status_and_cut_off_without_disturbing_others(restricted):
     other.send(op='subscribe', topic='/turtle1/pose', type='turtlesim/Pose')
     other.recv_until(lambda m: m.get('op') == 'publish')
     clients = [WsClient(restricted.port) for _ in range(3)]
+    # the flooder and the garbage sender come from addresses of their own (the incoming
+    # budgets are per address: a client cut off finds its budget spent when it reconnects)
+    flood = WsClient(restricted.port, source='127.0.0.2')
+    garbage = WsClient(restricted.port, source='127.0.0.3')
     try:
         # a 5th connection from this address is refused with a status
         fifth = WsClient(restricted.port)
@@ -288,8 +292,7 @@ def test_limits_status_and_cut_off_without_disturbing_others(restricted):
         c.send(op='subscribe', topic='/turtle1/color_sensor', type='turtlesim/Color', id='2')
         c.send(op='subscribe', topic='/turtle1/cmd_vel', type='geometry_msgs/Twist', id='3')
         assert 'max_client_subscriptions' in _status(c, '3')['msg']
-        # a flood of large messages: cut off
-        flood = clients[1]
+        # a flood of large messages: cut off, and so is its next connection
         flood.sock.settimeout(30)
         big = json.dumps({'op': 'publish', 'topic': '/turtle1/cmd_vel',
                           'msg': {'linear': {'x': 0.0}}, 'pad': 'x' * 100000})
@@ -299,15 +302,18 @@ def test_limits_status_and_cut_off_without_disturbing_others(restricted):
         except OSError:
             pass
         assert 'more than 1000000 bytes a second' in _closed(flood)
+        again = WsClient(restricted.port, source='127.0.0.2')
+        again.send_text(big)
+        assert 'cut off' in _closed(again)
+        again.close()
         # garbage: cut off
-        garbage = clients[2]
         try:
             for _ in range(100):
                 garbage.send_text('{nonsense')
         except OSError:
             pass
         assert 'bad messages a second' in _closed(garbage)
-        # the other client still gets its poses
+        # the other client still gets its poses, and this address can still talk
         n = [0]
         deadline = time.monotonic() + 30
 
@@ -316,11 +322,17 @@ def test_limits_status_and_cut_off_without_disturbing_others(restricted):
             return n[0] >= 20 or time.monotonic() > deadline
         other.recv_until(lambda m: m.get('op') == 'publish' and count(m))
         assert n[0] >= 20
+        c.send(op='call_service', service='/turtle1/teleport_relative', id='t',
+               args={'linear': 0.0, 'angular': 0.0})
+        assert c.recv_until(lambda m: m.get('id') == 't' and
+                            m.get('op') == 'service_response')['result'] is True
         limits = wait_for(lambda: _limits(restricted), 30, 0.2, '~limits')
-        assert limits['connections_refused'] >= 1 and limits['clients_cut_off'] >= 2 and \
+        assert limits['connections_refused'] >= 1 and limits['clients_cut_off'] >= 3 and \
             limits['subscriptions_refused'] >= 1, limits
     finally:
         other.close()
+        flood.close()
+        garbage.close()
         for c in clients:
             c.close()
 
@@ -338,6 +350,6 @@ def _limits(bridge):
             key = line.split(':', 1)[1].strip().strip('"')
         elif line.startswith('value:') and key:
             values[key] = int(line.split(':', 1)[1].strip().strip('"'))
-    if values.get('clients_cut_off', 0) < 2:
+    if values.get('clients_cut_off', 0) < 3:
         return None
     return values

@@ -101,3 +101,21 @@ def test_limit_settings_are_checked():
         settings.read({'max_client_subscriptions': 0}.get)
     with pytest.raises(settings.SettingsError, match='~authenticate: expected true or false'):
         settings.read({'authenticate': 'maybe'}.get)
+
+
+def test_address_budgets_penalty_and_rest():
+    from rosbridge_server.limits import AddressBudgets
+    now = [0.0]
+    b = AddressBudgets(100, 10, 1, clock=lambda: now[0])
+    assert b.bytes.take(150) and b.messages.take(1) and b.rested() is False
+    now[0] += 10.0
+    assert b.rested()
+    b.penalize()                          # cut off: nothing passes for capacity / rate s
+    assert not b.bytes.take(1) and not b.messages.take(1)
+    now[0] += 1.9
+    assert not b.bytes.take(1)            # 2 s to climb from -capacity (-200 bytes) to 0
+    now[0] += 0.5
+    assert b.bytes.take(1) and b.messages.take(1)
+    assert b.should_log() and not b.should_log() and b.unlogged == 1
+    now[0] += 6.0
+    assert b.should_log()

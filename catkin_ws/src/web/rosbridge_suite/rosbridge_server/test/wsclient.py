@@ -8,8 +8,10 @@ import struct
 
 
 class WsClient(object):
-    def __init__(self, port, host='127.0.0.1', rcvbuf=None, timeout=30.0):
+    def __init__(self, port, host='127.0.0.1', rcvbuf=None, timeout=30.0, source=None):
         self.sock = socket.socket()
+        if source:      # another loopback address (127.0.0.2, ...): another client address
+            self.sock.bind((source, 0))
         if rcvbuf:
             self.sock.setsockopt(socket.SOL_SOCKET, socket.SO_RCVBUF, rcvbuf)
         self.sock.settimeout(timeout)

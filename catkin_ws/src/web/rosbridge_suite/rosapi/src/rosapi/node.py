@@ -6,6 +6,7 @@ import rosservice
 
 from rosapi import graph, objectutils
 from rosbridge_library.internal.globs import parse_glob
+from rosbridge_library.internal.tcpros_backlog import deepen_tcpros_backlog
 from rosapi import srv as S
 from rosapi.msg import TypeDef
 
@@ -199,6 +200,9 @@ def main():
     api = RosApi()
     services = [rospy.Service('/rosapi/' + name, cls, getattr(api, name))
                 for name, cls in SERVICES]
+    if not deepen_tcpros_backlog():
+        rospy.logwarn('rosapi: could not raise the TCPROS listen backlog: many calls at once '
+                      'may time out')
     rospy.loginfo('Rosapi started')
     rospy.spin()
     del services

@@ -16,12 +16,54 @@ class Budget(object):
         self.level = self.capacity
         self.last = clock()
 
-    def take(self, amount=1.0):
+    def _refill(self):
         now = self.clock()
         self.level = min(self.capacity, self.level + (now - self.last) * self.rate)
         self.last = now
-        self.level -= amount
+
+    def take(self, amount=1.0):
+        self._refill()
+        self.level = max(-self.capacity, self.level - amount)
         return self.level >= 0
+
+    def penalize(self):
+        """Empty and more: nothing passes for capacity / rate seconds."""
+        self._refill()
+        self.level = -self.capacity
+
+    def full(self):
+        self._refill()
+        return self.level >= self.capacity
+
+
+class AddressBudgets(object):
+    """The incoming budgets of one client address, shared by all its connections: a client
+    that is cut off and reconnects finds its budget spent."""
+
+    def __init__(self, bytes_per_second, messages_per_second, errors_per_second,
+                 clock=time.monotonic):
+        self.bytes = Budget(bytes_per_second, 2 * bytes_per_second, clock)
+        self.messages = Budget(messages_per_second, 2 * messages_per_second, clock)
+        self.errors = Budget(errors_per_second, 10 * errors_per_second, clock)
+        self.clock = clock
+        self.last_log = None
+        self.unlogged = 0
+
+    def should_log(self, every=5.0):
+        """At most one cut-off line per `every` s for an address that keeps reconnecting."""
+        now = self.clock()
+        if self.last_log is None or now - self.last_log >= every:
+            self.last_log = now
+            return True
+        self.unlogged += 1
+        return False
+
+    def penalize(self):
+        for b in (self.bytes, self.messages, self.errors):
+            b.penalize()
+
+    def rested(self):
+        return all(b.full() for b in (self.bytes, self.messages, self.errors))
 
 
 class Counters(object):

@@ -27,7 +27,8 @@ DEFAULTS = {
     # ours: per-client limits (each hit is a status message / log line and a counter)
     'max_client_subscriptions': 100,
     'max_connections_per_address': 32,
-    'max_client_bytes_per_second': 16 * 1024 * 1024,   # incoming; 2 s of it may come at once
+    # incoming, per client address (all its connections): 2 s of it may come at once
+    'max_client_bytes_per_second': 4 * 1024 * 1024,
     'max_client_messages_per_second': 1000,
     'max_client_errors_per_second': 10,                 # bad messages; 10 s of it at once
     'auth_timeout': 15.0,                               # authenticate: first op within this

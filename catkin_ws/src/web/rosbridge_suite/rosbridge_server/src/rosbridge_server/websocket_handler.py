@@ -14,7 +14,7 @@ from tornado.websocket import WebSocketClosedError, WebSocketHandler
 
 from rosbridge_library.protocol import Protocol
 from rosbridge_server.client_queue import ClientQueue
-from rosbridge_server.limits import Budget, Counters
+from rosbridge_server.limits import AddressBudgets, Counters
 
 logger = logging.getLogger('rosout')
 
@@ -35,6 +35,7 @@ class Server(object):
         self.lock = threading.Lock()
         self.next_id = 0
         self.clients = {}          # client id -> RosbridgeWebSocket
+        self.budgets = {}          # client address -> AddressBudgets
         self.loop = None
 
     def add(self, handler):
@@ -52,6 +53,22 @@ class Server(object):
             n = len(self.clients)
         self.on_clients_changed(self.snapshot())
         return n
+
+    def budgets_of(self, ip):
+        """The shared incoming budgets of an address (kept while it is connected or has not
+        rested since it was cut off)."""
+        s = self.settings
+        with self.lock:
+            connected = {h.remote_ip for h in self.clients.values()}
+            for old in [a for a, b in self.budgets.items()
+                        if a not in connected and a != ip and b.rested()]:
+                del self.budgets[old]
+            b = self.budgets.get(ip)
+            if b is None:
+                b = self.budgets[ip] = AddressBudgets(s['max_client_bytes_per_second'],
+                                                      s['max_client_messages_per_second'],
+                                                      s['max_client_errors_per_second'])
+            return b
 
     def connections_from(self, ip):
         with self.lock:
@@ -96,12 +113,7 @@ class RosbridgeWebSocket(WebSocketHandler):
             logger.warning('Refused a connection: %s' % reason)
             self._close_with_status(reason)
             return
-        self.bytes_budget = Budget(s['max_client_bytes_per_second'],
-                                   2 * s['max_client_bytes_per_second'])
-        self.messages_budget = Budget(s['max_client_messages_per_second'],
-                                      2 * s['max_client_messages_per_second'])
-        self.errors_budget = Budget(s['max_client_errors_per_second'],
-                                    10 * s['max_client_errors_per_second'])
+        self.budgets = self.server.budgets_of(self.remote_ip)
         self.authenticated = self.server.authenticator is None
         self.queue = ClientQueue(s['max_client_queue_messages'], s['max_client_queue_bytes'])
         self.client_id, n = self.server.add(self)
@@ -116,10 +128,10 @@ class RosbridgeWebSocket(WebSocketHandler):
         if self.cut or self.protocol is None:
             return
         s = self.server.settings
-        if not self.bytes_budget.take(len(message)):
+        if not self.budgets.bytes.take(len(message)):
             return self._cut_off('sent more than %d bytes a second'
                                  % s['max_client_bytes_per_second'])
-        if not self.messages_budget.take(1):
+        if not self.budgets.messages.take(1):
             return self._cut_off('sent more than %d messages a second'
                                  % s['max_client_messages_per_second'])
         if not self.authenticated:
@@ -130,7 +142,7 @@ class RosbridgeWebSocket(WebSocketHandler):
         before = self.protocol.errors
         self.protocol.incoming(message)
         bad = self.protocol.errors - before
-        if bad and not self.errors_budget.take(bad):
+        if bad and not self.budgets.errors.take(bad):
             self._cut_off('sent more than %d bad messages a second'
                           % self.server.settings['max_client_errors_per_second'])
 
@@ -190,8 +202,14 @@ class RosbridgeWebSocket(WebSocketHandler):
     # ------------------------------------------------------------------------ limits
     def _cut_off(self, why):
         self.cut = True
+        self.budgets.penalize()     # its address waits before anything passes again
         self.server.counters.add('clients_cut_off')
-        logger.warning('[Client %s] cut off: it %s' % (self.client_id, why))
+        if self.budgets.should_log():
+            more, self.budgets.unlogged = self.budgets.unlogged, 0
+            logger.warning('[Client %s] cut off: it %s (%s)%s'
+                           % (self.client_id, why, self.remote_ip,
+                              '; %d more cut-offs of this address since the last line' % more
+                              if more else ''))
         self._close_with_status('cut off: the client %s' % why)
 
     def _close_with_status(self, text):
@@ -202,7 +220,12 @@ class RosbridgeWebSocket(WebSocketHandler):
             self.write_message(json.dumps({'op': 'status', 'level': 'error', 'msg': text}))
         except WebSocketClosedError:
             pass
+        conn = self.ws_connection       # close() forgets it
         self.close(1008, text[:120])
+        # tornado would read (and drop) what the client sends for 5 s more, waiting for its
+        # close frame: half a second is enough for the status and the close frame to leave
+        if conn is not None:
+            self.loop.call_later(0.5, conn.abort)
 
     def on_close(self):
         if self.protocol is None:

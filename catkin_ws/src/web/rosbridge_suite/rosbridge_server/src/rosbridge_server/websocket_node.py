@@ -13,6 +13,7 @@ from tornado.ioloop import IOLoop
 from tornado.web import Application
 
 from rosbridge_library.internal.ros_backend import RosBackend
+from rosbridge_library.internal.tcpros_backlog import deepen_tcpros_backlog
 from rosbridge_server import settings as settings_mod
 from rosbridge_server.limits import Counters
 from rosbridge_server.websocket_handler import RosbridgeWebSocket, Server
@@ -125,6 +126,8 @@ def main(argv=None):
     server = Server(backend, s, settings_mod.protocol_settings(s), _clients_publishers(),
                     authenticator=_authenticator() if s['authenticate'] else None,
                     counters=counters)
+    if not deepen_tcpros_backlog():    # (the publishers above started rospy's TCPROS server)
+        rospy.logwarn('rosbridge_websocket: could not raise the TCPROS listen backlog')
     app_settings = {'websocket_max_message_size': settings_mod.tornado_frame_limit(s)}
     if s['websocket_ping_interval'] > 0:
         app_settings['websocket_ping_interval'] = s['websocket_ping_interval']

@@ -50,7 +50,7 @@ class RosBackend(Backend):
         self.publishers = {}    # topic -> _Publisher
         self.subscribers = {}   # topic -> _Subscriber
         self.services = {}      # service -> (client id, srv type, rospy.Service)
-        self.master = rosgraph.Master(rospy.get_name())
+        self.service_types = {}  # service -> (provider URI, type) of services probed
 
     # ------------------------------------------------------------------------ graph
     def now(self):
@@ -64,7 +64,8 @@ class RosBackend(Backend):
                 if topic in table:
                     return table[topic].type
         try:
-            types = dict(self.master.getTopicTypes())
+            # one proxy per call: an xmlrpc ServerProxy breaks when threads share it
+            types = dict(rosgraph.Master(rospy.get_name()).getTopicTypes())
         except Exception:
             return None
         t = types.get(topic)
@@ -164,10 +165,22 @@ class RosBackend(Backend):
         with self.lock:
             if service in self.services:
                 return self.services[service][1]
+        # the type is probed with a connection to the service: remembered for as long as the
+        # same server (URI) provides it, so a call costs one connection, not two
         try:
-            return rosservice.get_service_type(service)
+            uri = rosgraph.Master(rospy.get_name()).lookupService(service)
         except Exception as e:
             raise Exception('Service %s does not exist (%s)' % (service, e))
+        cached = self.service_types.get(service)
+        if cached is not None and cached[0] == uri:
+            return cached[1]
+        try:
+            srv_type = rosservice.get_service_type(service)
+        except Exception as e:
+            raise Exception('Service %s does not exist (%s)' % (service, e))
+        if srv_type:
+            self.service_types[service] = (uri, srv_type)
+        return srv_type
 
     def call_service(self, service, srv_type, request, timeout=None):
         proxy = rospy.ServiceProxy(service, ros_loader.get_service_class(srv_type))
