@@ -199,11 +199,39 @@ def mode_trajectory():
     return out
 
 
+def mode_triggered():
+    from sensor_msgs.msg import Image
+    from std_msgs.msg import Empty as EmptyMsg
+    out = {}
+    images = []
+    rospy.Subscriber('/cam/image_raw', Image, images.append)
+    trig = rospy.Publisher('/cam/image_trigger', EmptyMsg, queue_size=10)
+    svc('/gazebo/unpause_physics', Empty)()
+    deadline = time.monotonic() + 30
+    while trig.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.1)
+    time.sleep(2.0)
+    out['before'] = len(images)             # nothing without a trigger
+    counts = []
+    for _ in range(3):
+        trig.publish(EmptyMsg())
+        deadline = time.monotonic() + 60
+        n = len(counts) + 1
+        while len(images) < n and time.monotonic() < deadline:
+            time.sleep(0.05)
+        time.sleep(1.5)                     # a second frame would come within this
+        counts.append(len(images))
+    out['counts'] = counts
+    out['stamps'] = [m.header.stamp.to_sec() for m in images]
+    out['size'] = [images[0].width, images[0].height, images[0].encoding] if images else None
+    return out
+
+
 def main():
     rospy.init_node('plugin_client', anonymous=True)
     out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
            'gripper': mode_gripper, 'block': mode_block,
-           'trajectory': mode_trajectory}[sys.argv[1]]()
+           'trajectory': mode_trajectory, 'triggered': mode_triggered}[sys.argv[1]]()
     print(json.dumps(out))
 
 

@@ -155,6 +155,25 @@ TRAJECTORY_MODELS = """
                                          extra='<pose>0 0 0.2 0 0 0</pose>'))
 
 
+TRIGGERED_SENSOR = """<sensor type="camera" name="cam">
+  <update_rate>30</update_rate>
+  <camera><horizontal_fov>1.0</horizontal_fov><image><width>64</width><height>48</height>
+    <format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera>
+  <plugin name="cam_plugin" filename="libgazebo_ros_triggered_camera.so">
+    <cameraName>cam</cameraName>
+    <imageTopicName>image_raw</imageTopicName>
+    <cameraInfoTopicName>camera_info</cameraInfoTopicName>
+    <frameName>cam_link</frameName>
+  </plugin>
+</sensor>"""
+
+TRIGGERED_MODELS = """
+<model name="camera"><static>true</static><pose>0 0 1 0 0 0</pose>
+  {link}
+</model>
+""".format(link=box_link(size='0.02 0.02 0.02', sensors=TRIGGERED_SENSOR))
+
+
 def run(roscore, tmp_path, models, mode, *sim_args):
     world = tmp_path / 'w.world'
     world.write_text(WORLD.format(models=models))
@@ -268,3 +287,12 @@ def test_joint_pose_trajectory_sets_the_joints_at_the_points_times(roscore, tmp_
     base, after = out['base_kept']
     assert after == pytest.approx(base, abs=1e-3)
     assert 'updating configuration [1/2]' in log
+
+
+def test_triggered_camera_publishes_one_frame_per_trigger(roscore, tmp_path):
+    out, _log = run(roscore, tmp_path, TRIGGERED_MODELS, 'triggered', '-u')
+    assert out['before'] == 0
+    assert out['counts'] == [1, 2, 3]
+    stamps = out['stamps']
+    assert stamps == sorted(stamps) and len(set(stamps)) == 3
+    assert out['size'] == [64, 48, 'rgb8']

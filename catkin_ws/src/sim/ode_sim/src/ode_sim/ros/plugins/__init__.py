@@ -18,6 +18,7 @@ MODULES = {
     'contact': ['libgazebo_ros_bumper.so'],
     'range': ['libgazebo_ros_range.so'],
     'block_laser': ['libgazebo_ros_block_laser.so'],
+    'triggered_camera': ['libgazebo_ros_triggered_camera.so'],
     'motion': ['libgazebo_ros_planar_move.so', 'libgazebo_ros_force.so',
                'libgazebo_ros_vacuum_gripper.so', 'libgazebo_ros_joint_pose_trajectory.so'],
 }
