@@ -226,3 +226,12 @@ def test_3d_panel_shows_robot_and_scan(stack):
     mid = (slice(h // 4, 3 * h // 4), slice(w // 4, 3 * w // 4))
     diff = int((np.abs(no_scan[mid].astype(int) - no_robot[mid]).max(axis=2) > 40).sum())
     assert diff > 500, 'the robot model covers only %d pixels of the view\'s middle' % diff
+
+
+def test_page_connected_through_rosauth(stack):
+    """The page reached rosbridge (authenticate:=true in web.launch) with the rosauth MAC that
+    course_web_server gave it for its token: rosbridge accepted it, never refused it."""
+    log = stack.launch.output()
+    assert 'has authenticated.' in log, log[-3000:]
+    assert 'did not authenticate' not in log, log[-3000:]
+    assert TOKEN not in log.replace('?token=%s' % TOKEN, ''), 'the token leaked into a log line'

@@ -14,7 +14,10 @@ export function connect(url, onState, onReconnect) {
   let everClosed = false;
   let auth = null;
   // registered first: goes out before anything the panels queued for the connection
-  ros.on('connection', () => { if (auth) ros.callOnConnection(auth); auth = null; });
+  ros.on('connection', () => {
+    if (auth) ros.authenticate(auth.mac, auth.client, auth.dest, auth.rand, auth.t, auth.level, auth.end);
+    auth = null;
+  });
   ros.on('connection', () => { onState('connected'); if (everClosed) onReconnect(); });
   ros.on('error', () => onState('error (is rosbridge running? roslaunch rosbridge_server rosbridge_websocket.launch)'));
   const open = async () => { auth = await freshAuth(); ros.connect(url); };
