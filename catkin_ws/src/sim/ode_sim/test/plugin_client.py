@@ -227,11 +227,32 @@ def mode_triggered():
     return out
 
 
+def mode_stereo():
+    """The red post's column in the left and right images (centroid of its pixels)."""
+    import numpy as np
+    from sensor_msgs.msg import CameraInfo, Image
+    svc('/gazebo/unpause_physics', Empty)()
+    out = {}
+    for side in ('left', 'right'):
+        img = latest('/stereo/%s/image_raw' % side, Image)
+        info = latest('/stereo/%s/camera_info' % side, CameraInfo)
+        a = np.frombuffer(img.data, dtype=np.uint8).reshape(img.height, img.width, 3)
+        r, g, b = (a[:, :, k].astype(int) for k in range(3))
+        red = (r > g + 40) & (r > b + 40)
+        cols = np.nonzero(red)[1]
+        out[side] = {'col': float(cols.mean()) if len(cols) else None, 'n': int(len(cols)),
+                     'P': list(info.P), 'frame': img.header.frame_id,
+                     'stamp': img.header.stamp.to_sec(),
+                     'centre': a[img.height // 2, img.width // 2].tolist()}
+    return out
+
+
 def main():
     rospy.init_node('plugin_client', anonymous=True)
     out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
            'gripper': mode_gripper, 'block': mode_block,
-           'trajectory': mode_trajectory, 'triggered': mode_triggered}[sys.argv[1]]()
+           'trajectory': mode_trajectory, 'triggered': mode_triggered,
+           'stereo': mode_stereo}[sys.argv[1]]()
     print(json.dumps(out))
 
 

@@ -174,6 +174,35 @@ TRIGGERED_MODELS = """
 """.format(link=box_link(size='0.02 0.02 0.02', sensors=TRIGGERED_SENSOR))
 
 
+STEREO_CAMERA = """<camera name="{n}"><pose>0 {y} 0 0 0 0</pose>
+      <horizontal_fov>1.0</horizontal_fov><image><width>160</width><height>120</height>
+      <format>R8G8B8</format></image><clip><near>0.05</near><far>50</far></clip></camera>"""
+
+STEREO_MODELS = """
+<model name="post"><static>true</static><pose>2.0 0 1 0 0 0</pose>
+  <link name="link"><visual name="v"><geometry><box><size>0.1 0.1 2</size></box></geometry>
+    <material><ambient>1 0 0 1</ambient><diffuse>1 0 0 1</diffuse></material></visual></link>
+</model>
+<model name="stereo_rig"><static>true</static><pose>0 0 1 0 0 0</pose>
+  <link name="link">
+    <sensor type="multicamera" name="stereo">
+      <update_rate>10</update_rate>
+      {left}
+      {right}
+      <plugin name="stereo_plugin" filename="libgazebo_ros_multicamera.so">
+        <cameraName>stereo</cameraName>
+        <imageTopicName>image_raw</imageTopicName>
+        <cameraInfoTopicName>camera_info</cameraInfoTopicName>
+        <frameName>stereo_link</frameName>
+        <hackBaseline>0.07</hackBaseline>
+      </plugin>
+    </sensor>
+  </link>
+</model>
+""".format(left=STEREO_CAMERA.format(n='left', y=0.035),
+           right=STEREO_CAMERA.format(n='right', y=-0.035))
+
+
 def run(roscore, tmp_path, models, mode, *sim_args):
     world = tmp_path / 'w.world'
     world.write_text(WORLD.format(models=models))
@@ -296,3 +325,16 @@ def test_triggered_camera_publishes_one_frame_per_trigger(roscore, tmp_path):
     stamps = out['stamps']
     assert stamps == sorted(stamps) and len(set(stamps)) == 3
     assert out['size'] == [64, 48, 'rgb8']
+
+
+def test_multicamera_stereo_pair_has_the_baseline(roscore, tmp_path):
+    import math
+    out, _log = run(roscore, tmp_path, STEREO_MODELS, 'stereo')
+    left, right = out['left'], out['right']
+    f = 80.0 / math.tan(0.5)
+    assert left['P'][3] == 0.0 and right['P'][3] == pytest.approx(-f * 0.07)
+    assert left['frame'] == right['frame'] == 'stereo_link'
+    assert left['n'] > 50 and right['n'] > 50
+    # the post (front face 1.95 m away) is shifted by f B / Z between the images
+    assert left['col'] - right['col'] == pytest.approx(f * 0.07 / 1.95, abs=1.0)
+    assert left['col'] > 79.5 > right['col']

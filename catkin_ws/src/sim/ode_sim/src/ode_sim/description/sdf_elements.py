@@ -226,6 +226,19 @@ def _noise(ctx, parent):
     return ctx.num(n, 'mean', 0.0), ctx.num(n, 'stddev', 0.0)
 
 
+def _camera_entry(ctx, cam, sensor_name):
+    img = cam.find('image')
+    img = img if img is not None else ET.Element('image')
+    clip = cam.find('clip')
+    clip = clip if clip is not None else ET.Element('clip')
+    mean, std = _noise(ctx, cam)
+    return {'name': (cam.get('name') or '').strip(), 'pose': ctx.pose(cam),
+            'horizontal_fov': ctx.num(cam, 'horizontal_fov', 1.047),
+            'width': ctx.integer(img, 'width', 320), 'height': ctx.integer(img, 'height', 240),
+            'format': text_of(img, 'format', 'R8G8B8'), 'near': ctx.num(clip, 'near', 0.1),
+            'far': ctx.num(clip, 'far', 100.0), 'noise_mean': mean, 'noise_stddev': std}
+
+
 def parse_sensor(ctx, el, link_name):
     """A Sensor from an SDF <sensor> (link_name: the link it is attached to)."""
     name = ctx.name(el, 'sensor')
@@ -289,6 +302,10 @@ def parse_sensor(ctx, el, link_name):
             raise ctx.err(img, '<sensor name=%r>: image width/height must be >= 1' % name)
         if not 0 < p['horizontal_fov'] < 2 * math.pi + 1e-9:
             raise ctx.err(cam, '<sensor name=%r>: <horizontal_fov> must be in (0, 2 pi)' % name)
+        if stype == 'multicamera':
+            # every <camera> of the sensor (name, pose in the sensor frame, its own image),
+            # for libgazebo_ros_multicamera.so
+            p['cameras'] = [_camera_entry(ctx, c, name) for c in el.findall('camera')]
     elif stype == 'imu':
         imu = el.find('imu')
         imu = imu if imu is not None else ET.Element('imu')

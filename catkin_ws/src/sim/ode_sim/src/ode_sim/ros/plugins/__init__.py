@@ -19,6 +19,7 @@ MODULES = {
     'range': ['libgazebo_ros_range.so'],
     'block_laser': ['libgazebo_ros_block_laser.so'],
     'triggered_camera': ['libgazebo_ros_triggered_camera.so'],
+    'multicamera': ['libgazebo_ros_multicamera.so'],
     'motion': ['libgazebo_ros_planar_move.so', 'libgazebo_ros_force.so',
                'libgazebo_ros_vacuum_gripper.so', 'libgazebo_ros_joint_pose_trajectory.so'],
 }
