@@ -2,7 +2,9 @@
 # Start the course container with X11 forwarding (RViz, turtlesim, rqt_plot windows) and the
 # host folder workspace/ mounted at /root/workspace. Everything else in the container is lost
 # when this terminal closes: keep your catkin workspaces in /root/workspace. With --net=host
-# the course web view (roslaunch course_web web.launch) is http://localhost:8080 on the host.
+# the course web view (roslaunch course_web web.launch, bound to 127.0.0.1) opens in the host's
+# browser at the URL it prints (http://localhost:8080/?token=...); nothing else is needed, and
+# address:=0.0.0.0 would open it to the other machines of the network (still with the token).
 #   ./docker_run.bash                  a shell in the Debian 12 (bookworm) image
 #   ./docker_run.bash trixie           a shell in the Debian 13 (trixie) image
 #   ./docker_run.bash [trixie] CMD...  run CMD (in the course's ROS environment) instead
