@@ -36,7 +36,58 @@ PRIMITIVES_WORLD = '''<?xml version="1.0"?>
   </world>
 </sdf>
 '''
-# two groups, each run in parallel by a module fixture, so that one fixture stays well inside
+# the wheels as the book's §12.4 has them: effort_controllers' velocity controller, one per
+# wheel, on the EffortJointInterface; a small node turns the control program's twist into wheel
+# speeds. The same with position controllers must fail criterion 5.
+CONFIG = 'config/lab4_control.yaml'
+LAUNCH = 'launch/lab4.launch'
+PER_WHEEL_CONFIG = '''diffrobot:
+  joint_state_controller:
+    type: joint_state_controller/JointStateController
+    publish_rate: 50
+  left_wheel_controller:
+    type: effort_controllers/{kind}Controller
+    joint: wheel_left_joint
+    pid: {{p: 0.1, i: 1.0, d: 0.0, i_clamp: 1.0}}
+  right_wheel_controller:
+    type: effort_controllers/{kind}Controller
+    joint: wheel_right_joint
+    pid: {{p: 0.1, i: 1.0, d: 0.0, i_clamp: 1.0}}
+'''
+WHEEL_SPEEDS = '''#!/usr/bin/python3
+"""cmd_vel (Twist) -> each wheel controller's command (Float64, rad/s)."""
+import rospy
+from geometry_msgs.msg import Twist
+from std_msgs.msg import Float64
+
+rospy.init_node('wheel_speeds')
+radius, separation = rospy.get_param('~wheel_radius', 0.05), rospy.get_param('~wheel_separation', 0.175)
+left = rospy.Publisher('left_wheel_controller/command', Float64, queue_size=1)
+right = rospy.Publisher('right_wheel_controller/command', Float64, queue_size=1)
+
+
+def on_twist(m):
+    left.publish(Float64((m.linear.x - m.angular.z * separation / 2) / radius))
+    right.publish(Float64((m.linear.x + m.angular.z * separation / 2) / radius))
+
+
+rospy.Subscriber('cmd_vel', Twist, on_twist, queue_size=1)
+rospy.spin()
+'''
+SPAWNED = 'args="mobile_base_controller joint_state_controller --timeout 120"/>'
+PER_WHEEL_SPAWNED = ('args="left_wheel_controller right_wheel_controller joint_state_controller --timeout 120"/>\n'
+                     '  <node name="wheel_speeds" pkg="my_robot_simulation_control" type="wheel_speeds.py" ns="/diffrobot"/>')
+
+
+def per_wheel(kind):
+    """make_repo kwargs: the reference with effort_controllers/<kind>Controller on each wheel."""
+    return {'edits': [(MODEL, 'hardware_interface/VelocityJointInterface', 'hardware_interface/EffortJointInterface'),
+                      (LAUNCH, SPAWNED, PER_WHEEL_SPAWNED),
+                      (LAUNCH, 'to="/diffrobot/mobile_base_controller/cmd_vel"', 'to="/diffrobot/cmd_vel"')],
+            'add': {CONFIG: PER_WHEEL_CONFIG.format(kind=kind), 'scripts/wheel_speeds.py': WHEEL_SPEEDS}}
+
+
+# groups, each run in parallel by a module fixture, so that one fixture stays well inside
 # pytest's per-test timeout on a loaded 2-core machine
 CASES_A = {
     'ref_v1': ('123451', {}),
@@ -48,6 +99,11 @@ CASES_B = {
     'wrong_lidar_range': ('123451', {'edits': [(MODEL, ROW1, ROW1.replace('lidar=[0.03, 3.0]', 'lidar=[0.03, 3.5]'))]}),
     'primitives_only': ('123451', {'add': {WORLD: PRIMITIVES_WORLD}}),
     'never_moves': ('123451', {'edits': [(CTRL, "get_param('~speed', 0.2)", "get_param('~speed', 0.0)")]}),
+}
+
+CASES_C = {
+    'effort_velocity': ('123451', per_wheel('JointVelocity')),
+    'effort_position': ('123451', per_wheel('JointPosition')),
 }
 
 
@@ -101,3 +157,23 @@ def test_does_not_build(runs_a):
     rc, out, crits = crit(runs_a, 'does_not_build')
     assert rc == 1 and failed(crits) == [str(i) for i in range(10)], out
     assert 'does not build' in crits['0'][1] and 'not checked' in crits['1'][1]
+
+
+@pytest.fixture(scope='module')
+def runs_c(tmp_path_factory):
+    return run_cases('lab4', CASES_C, str(tmp_path_factory.mktemp('lab4c')), workers=2)
+
+
+def test_effort_velocity_controllers_pass(runs_c):
+    """§12.4: the velocity controller taken from effort_controllers (EffortJointInterface)."""
+    rc, out, crits = crit(runs_c, 'effort_velocity')
+    assert rc == 0 and not failed(crits), out
+    assert 'left_wheel_controller effort_controllers/JointVelocityController' in crits['5'][1], out
+    assert 'wheels wheel_left_joint, wheel_right_joint by velocity' in crits['5'][1], out
+
+
+def test_effort_position_controllers_fail(runs_c):
+    rc, out, crits = crit(runs_c, 'effort_position')
+    assert rc == 1 and '5' in failed(crits), out
+    assert crits['5'][1].startswith('wheels not controlled by velocity: wheel_left_joint by left_wheel_controller '
+                                    '(effort_controllers/JointPositionController, position)'), out
