@@ -247,12 +247,34 @@ def mode_stereo():
     return out
 
 
+def mode_gps():
+    from geometry_msgs.msg import Vector3Stamped
+    from sensor_msgs.msg import NavSatFix
+    fixes, vels = [], []
+    rospy.Subscriber('/rover/fix', NavSatFix, fixes.append)
+    rospy.Subscriber('/rover/fix_velocity', Vector3Stamped, vels.append)
+    pub = rospy.Publisher('/rover/cmd_vel', Twist, queue_size=1, latch=True)
+    cmd = Twist()
+    cmd.linear.x, cmd.linear.y = 1.0, 0.5
+    pub.publish(cmd)
+    time.sleep(1.0)
+    run_for(3.0)
+    end, t_end = state('rover'), sim_time()
+    time.sleep(0.5)
+    f, v = fixes[-1], vels[-1]
+    return {'end': end, 't_end': t_end, 'stamp': f.header.stamp.to_sec(),
+            'fix': [f.latitude, f.longitude, f.altitude], 'frame': f.header.frame_id,
+            'status': [f.status.status, f.status.service, f.position_covariance_type],
+            'vel': [v.vector.x, v.vector.y, v.vector.z],
+            'stamps': [m.header.stamp.to_sec() for m in fixes[-4:]]}
+
+
 def main():
     rospy.init_node('plugin_client', anonymous=True)
     out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
            'gripper': mode_gripper, 'block': mode_block,
            'trajectory': mode_trajectory, 'triggered': mode_triggered,
-           'stereo': mode_stereo}[sys.argv[1]]()
+           'stereo': mode_stereo, 'gps': mode_gps}[sys.argv[1]]()
     print(json.dumps(out))
 
 

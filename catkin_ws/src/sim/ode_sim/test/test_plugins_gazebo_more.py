@@ -203,6 +203,28 @@ STEREO_MODELS = """
            right=STEREO_CAMERA.format(n='right', y=-0.035))
 
 
+GPS_MODELS = """
+<model name="rover"><pose>0 0 0.5 0 0 0</pose>
+  {link}
+  <plugin name="mover" filename="libgazebo_ros_planar_move.so">
+    <robotNamespace>/rover</robotNamespace>
+    <odometryFrame>odom</odometryFrame>
+    <robotBaseFrame>base_footprint</robotBaseFrame>
+    <odometryRate>20.0</odometryRate>
+  </plugin>
+  <plugin name="gps" filename="libhector_gazebo_ros_gps.so">
+    <robotNamespace>/rover</robotNamespace>
+    <bodyName>link</bodyName>
+    <frameId>gps_link</frameId>
+    <referenceLatitude>55.75</referenceLatitude>
+    <referenceLongitude>37.62</referenceLongitude>
+    <referenceAltitude>150</referenceAltitude>
+    <updateRate>10</updateRate>
+  </plugin>
+</model>
+""".format(link=box_link(mass=5.0, i=0.05, extra='<gravity>false</gravity>'))
+
+
 def run(roscore, tmp_path, models, mode, *sim_args):
     world = tmp_path / 'w.world'
     world.write_text(WORLD.format(models=models))
@@ -338,3 +360,28 @@ def test_multicamera_stereo_pair_has_the_baseline(roscore, tmp_path):
     # the post (front face 1.95 m away) is shifted by f B / Z between the images
     assert left['col'] - right['col'] == pytest.approx(f * 0.07 / 1.95, abs=1.0)
     assert left['col'] > 79.5 > right['col']
+
+
+def test_gps_fix_follows_the_link_on_the_wgs84_ellipsoid(roscore, tmp_path):
+    import math
+    out, _log = run(roscore, tmp_path, GPS_MODELS, 'gps', '-u')
+    lag = out['t_end'] - out['stamp']
+    assert 0 <= lag <= 0.101
+    x = out['end']['xyz'][0] - 1.0 * lag
+    y = out['end']['xyz'][1] - 0.5 * lag
+    z = out['end']['xyz'][2]
+    # WGS84 radii at 55.75 deg (meridian and prime-vertical circle)
+    a, f = 6378137.0, 1 / 298.257223563
+    e2 = 2 * f - f * f
+    s = math.sin(math.radians(55.75))
+    n = a / math.sqrt(1 - e2 * s * s)
+    r_north, r_east = n * (1 - e2) / (1 - e2 * s * s), n * math.cos(math.radians(55.75))
+    lat, lon, alt = out['fix']
+    assert lat == pytest.approx(55.75 + math.degrees(x / r_north), abs=1e-9)
+    assert lon == pytest.approx(37.62 - math.degrees(y / r_east), abs=1e-9)
+    assert alt == pytest.approx(150 + z, abs=1e-6)
+    assert x > 2.5                                          # it did move 3 s at 1 m/s
+    assert out['frame'] == 'gps_link' and out['status'] == [0, 0, 2]
+    assert out['vel'] == pytest.approx([1.0, 0.5, 0.0], abs=1e-3)
+    gaps = [b - a for a, b in zip(out['stamps'], out['stamps'][1:])]
+    assert all(g == pytest.approx(0.1, abs=1.5e-3) for g in gaps), gaps

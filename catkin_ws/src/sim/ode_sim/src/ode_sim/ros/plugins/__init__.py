@@ -20,6 +20,7 @@ MODULES = {
     'block_laser': ['libgazebo_ros_block_laser.so'],
     'triggered_camera': ['libgazebo_ros_triggered_camera.so'],
     'multicamera': ['libgazebo_ros_multicamera.so'],
+    'gps': ['libhector_gazebo_ros_gps.so', 'libgazebo_ros_gps.so'],
     'motion': ['libgazebo_ros_planar_move.so', 'libgazebo_ros_force.so',
                'libgazebo_ros_vacuum_gripper.so', 'libgazebo_ros_joint_pose_trajectory.so'],
 }
