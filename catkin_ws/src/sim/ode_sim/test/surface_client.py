@@ -81,6 +81,10 @@ def mode_graph():
         while not got and time.monotonic() < deadline:
             time.sleep(0.1)
         out['markers'] = len(got[0].markers) if got else None
+    if '--metrics' in sys.argv:
+        m = rospy.wait_for_message('/gazebo/performance_metrics', gm.PerformanceMetrics,
+                                   timeout=60)
+        out['metrics'] = [m.real_time_factor, m.header.stamp.to_sec(), len(m.sensors)]
     return out
 
 

@@ -54,12 +54,14 @@ def test_topics_and_services_are_gazebos_and_scene_markers_come_when_subscribed(
         roscore, tmp_path):
     p = launch(roscore, tmp_path)
     try:
-        out = client(roscore, p, 'graph', '--markers')
+        out = client(roscore, p, 'graph', '--markers', '--metrics')
     finally:
         p.stop()
     assert out['topics'] == GAZEBO_TOPICS          # no /tf, no /gazebo/scene_markers
     assert out['services'] == ['/gazebo/' + s for s in GAZEBO_SERVICES]
     assert out['markers'] >= 2                     # DELETEALL + the ground plane
+    rtf, stamp, _sensors = out['metrics']          # paced at 1000 steps of 1 ms per second
+    assert 0 < rtf <= 1.1 and stamp > 0
 
 
 def test_scene_markers_parameter_advertises_them_at_once(roscore, tmp_path):
