@@ -269,12 +269,41 @@ def mode_gps():
             'stamps': [m.header.stamp.to_sec() for m in fixes[-4:]]}
 
 
+def mode_imu_gpu():
+    """imu_sensor on a spinning floating box; gpu_laser facing a wall."""
+    import math
+    from sensor_msgs.msg import Imu, LaserScan
+    imus = []
+    rospy.Subscriber('/spinner/imu', Imu, imus.append)
+    req = gm.ModelState(model_name='spinner', reference_frame='world')
+    req.pose.position.z, req.pose.orientation.w = 1.0, 1.0
+    req.twist.angular.z = 0.5
+    svc('/gazebo/set_model_state', gs.SetModelState)(req)
+    time.sleep(1.0)
+    run_for(1.0)
+    end, t_end = state('spinner'), sim_time()
+    time.sleep(0.5)
+    m = imus[-1]
+    q = m.orientation
+    yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
+    qe = end['q']
+    yaw_end = math.atan2(2 * (qe[3] * qe[2] + qe[0] * qe[1]), 1 - 2 * (qe[1] ** 2 + qe[2] ** 2))
+    svc('/gazebo/unpause_physics', Empty)()
+    scan = latest('/gpu_scan', LaserScan)
+    return {'lag': t_end - m.header.stamp.to_sec(), 'yaw': yaw, 'yaw_end': yaw_end,
+            'w': [m.angular_velocity.x, m.angular_velocity.y, m.angular_velocity.z],
+            'acc': [m.linear_acceleration.x, m.linear_acceleration.y, m.linear_acceleration.z],
+            'frame': m.header.frame_id, 'n': len(imus),
+            'scan_mid': scan.ranges[len(scan.ranges) // 2], 'scan_frame': scan.header.frame_id}
+
+
 def main():
     rospy.init_node('plugin_client', anonymous=True)
     out = {'range': mode_range, 'planar': mode_planar, 'force': mode_force,
            'gripper': mode_gripper, 'block': mode_block,
            'trajectory': mode_trajectory, 'triggered': mode_triggered,
-           'stereo': mode_stereo, 'gps': mode_gps}[sys.argv[1]]()
+           'stereo': mode_stereo, 'gps': mode_gps,
+           'imu_gpu': mode_imu_gpu}[sys.argv[1]]()
     print(json.dumps(out))
 
 

@@ -225,6 +225,44 @@ GPS_MODELS = """
 """.format(link=box_link(mass=5.0, i=0.05, extra='<gravity>false</gravity>'))
 
 
+IMU_SENSOR = """<sensor type="imu" name="imu">
+  <always_on>true</always_on><update_rate>50</update_rate>
+  <plugin name="imu_plugin" filename="libgazebo_ros_imu_sensor.so">
+    <topicName>imu</topicName>
+    <bodyName>link</bodyName>
+    <updateRateHZ>50.0</updateRateHZ>
+    <gaussianNoise>0.0</gaussianNoise>
+    <xyzOffset>0 0 0</xyzOffset>
+    <rpyOffset>0 0 0</rpyOffset>
+    <frameName>imu_link</frameName>
+  </plugin>
+</sensor>"""
+
+GPU_SENSOR = """<sensor type="gpu_ray" name="gpu">
+  <update_rate>10</update_rate>
+  <ray><scan><horizontal><samples>91</samples><resolution>1</resolution>
+    <min_angle>-0.785</min_angle><max_angle>0.785</max_angle></horizontal></scan>
+    <range><min>0.1</min><max>10</max><resolution>0.01</resolution></range></ray>
+  <plugin name="gpu_laser" filename="libgazebo_ros_gpu_laser.so">
+    <topicName>/gpu_scan</topicName>
+    <frameName>gpu_link</frameName>
+  </plugin>
+</sensor>"""
+
+IMU_GPU_MODELS = """
+<model name="spinner"><pose>0 0 1 0 0 0</pose>
+  {spinner}
+</model>
+<model name="wall"><static>true</static><pose>3.1 5 0.5 0 0 0</pose>
+  <link name="link"><collision name="c"><geometry><box><size>0.2 4 1</size></box></geometry></collision></link>
+</model>
+<model name="lidar"><static>true</static><pose>0 5 0.5 0 0 0</pose>
+  {lidar}
+</model>
+""".format(spinner=box_link(mass=1.0, extra='<gravity>false</gravity>', sensors=IMU_SENSOR),
+           lidar=box_link(size='0.02 0.02 0.02', sensors=GPU_SENSOR))
+
+
 def run(roscore, tmp_path, models, mode, *sim_args):
     world = tmp_path / 'w.world'
     world.write_text(WORLD.format(models=models))
@@ -385,3 +423,13 @@ def test_gps_fix_follows_the_link_on_the_wgs84_ellipsoid(roscore, tmp_path):
     assert out['vel'] == pytest.approx([1.0, 0.5, 0.0], abs=1e-3)
     gaps = [b - a for a, b in zip(out['stamps'], out['stamps'][1:])]
     assert all(g == pytest.approx(0.1, abs=1.5e-3) for g in gaps), gaps
+
+
+def test_imu_sensor_and_gpu_laser_against_the_truth(roscore, tmp_path):
+    out, _log = run(roscore, tmp_path, IMU_GPU_MODELS, 'imu_gpu', '-u')
+    assert 0 <= out['lag'] <= 0.021 and out['frame'] == 'imu_link' and out['n'] >= 45
+    # the IMU's yaw at its stamp = the model's yaw then (0.5 rad/s)
+    assert out['yaw'] == pytest.approx(out['yaw_end'] - 0.5 * out['lag'], abs=2e-3)
+    assert out['w'] == pytest.approx([0, 0, 0.5], abs=1e-3)
+    assert out['acc'] == pytest.approx([0, 0, 9.8], abs=0.05)   # a - g, floating: a = 0
+    assert out['scan_mid'] == pytest.approx(3.0, abs=1e-3) and out['scan_frame'] == 'gpu_link'
