@@ -152,10 +152,13 @@ class FakeApi(object):
     (['unload', 'a'], [('unload_controller', ('a',), {})]),
     (['start', 'a'], [('start_controller', ('a',), {})]),
     (['stop', 'a'], [('stop_controller', ('a',), {})]),
-    (['sp', 'a'], [('load_controller', ('a',), {}), ('start_controller', ('a',), {})]),
-    (['kl', 'a'], [('stop_controller', ('a',), {}), ('unload_controller', ('a',), {})]),
-    (['reload-libraries'], [('reload_libraries', (), {'force_kill': False, 'restore': False})]),
-    (['reload-libraries', '--restore'], [('reload_libraries', (), {'force_kill': True, 'restore': True})]),
+    (['load'], []),
+    (['sp', 'a', 'b'], [('load_controller', ('a',), {}), ('load_controller', ('b',), {}),
+                        ('start_controller', ('a',), {}), ('start_controller', ('b',), {})]),
+    (['kl', 'a', 'b'], [('stop_controller', ('a',), {}), ('stop_controller', ('b',), {}),
+                        ('unload_controller', ('a',), {}), ('unload_controller', ('b',), {})]),
+    (['reload-libraries'], [('reload_libraries', (True,), {'restore': False})]),
+    (['reload-libraries', '--restore'], [('reload_libraries', (True,), {'restore': True})]),
 ])
 def test_cli_commands(argv, calls):
     api = FakeApi()
@@ -163,12 +166,13 @@ def test_cli_commands(argv, calls):
     assert api.calls == calls
 
 
-@pytest.mark.parametrize('argv', [[], ['nope'], ['load'], ['lc', 'extra'], ['reload-libraries', '--x']])
-def test_cli_usage_errors(argv, capsys):
-    assert cli.main(argv, FakeApi()) == 2
-    err = capsys.readouterr().err
-    assert err.startswith('controller_manager: ')
-    assert 'lt, list-types' in err
+def test_cli_usage(capsys):
+    assert cli.main([], FakeApi()) == 0  # as the original: usage, exit 0
+    assert 'reload-libraries     - Reloads all plugin controller libraries' in capsys.readouterr().out
+    assert cli.main(['nope'], FakeApi()) == 1
+    out, err = capsys.readouterr()
+    assert err == "controller_manager: unknown command 'nope'\n"
+    assert out.startswith('Commands:\n    load <name>')
 
 
 def test_cli_failure_exit_code():
@@ -176,3 +180,82 @@ def test_cli_failure_exit_code():
         def load_controller(self, name):
             return False
     assert cli.main(['load', 'a'], Failing()) == 1
+
+
+class FakeSrv(object):
+    """Stands in for a rospy.ServiceProxy: records requests, answers ok."""
+    def __init__(self, calls, name, ok=True, response=None):
+        self.calls, self.name, self.ok, self.response = calls, name, ok, response
+
+    def call(self, *args, **kwargs):
+        self.calls.append((self.name, args, kwargs))
+        if self.response is not None:
+            return self.response
+        return type('Resp', (), {'ok': self.ok})()
+
+    __call__ = call
+
+
+def fake_services(monkeypatch, ok=True, controllers=()):
+    from controller_manager import controller_manager_interface as cmi
+    from controller_manager_msgs.srv import ListControllersResponse
+    calls = []
+
+    def proxy(service, srv_type, namespace=None, wait=True):
+        resp = ListControllersResponse(controller=list(controllers)) if service == 'list_controllers' else None
+        return FakeSrv(calls, service, ok, resp)
+    monkeypatch.setattr(cmi, '_proxy', proxy)
+    return cmi, calls
+
+
+def test_interface_output_as_the_original(monkeypatch, capsys):
+    from controller_manager_msgs.msg import ControllerState, HardwareInterfaceResources
+    c1 = ControllerState(name='my_controller1', state='running', claimed_resources=[
+        HardwareInterfaceResources(hardware_interface='hardware_interface::EffortJointInterface', resources=['j1'])])
+    c2 = ControllerState(name='jsc', state='initialized', claimed_resources=[
+        HardwareInterfaceResources(hardware_interface='hardware_interface::VelocityJointInterface'),
+        HardwareInterfaceResources(hardware_interface='hardware_interface::EffortJointInterface')])
+    cmi, calls = fake_services(monkeypatch, controllers=[c1, c2])
+    cmi.list_controllers()
+    assert cmi.load_controller('my_controller1')
+    assert cmi.unload_controller('my_controller1')
+    assert cmi.start_controller('a')
+    assert cmi.stop_controllers(['a', 'b'])
+    assert cmi.start_controllers(('a', 'b'))
+    assert cmi.reload_libraries(True)
+    assert capsys.readouterr().out == (
+        "'my_controller1' - 'hardware_interface::EffortJointInterface' ( running )\n"
+        "'jsc' - 'hardware_interface::EffortJointInterface+hardware_interface::VelocityJointInterface' ( initialized )\n"
+        "Loaded 'my_controller1'\n"
+        "Unloaded 'my_controller1' successfully\n"
+        "Started ['a'] successfully\n"
+        "Stopped ['a', 'b'] successfully\n"
+        "Started ('a', 'b') successfully\n"
+        "Restore: False\nSuccessfully reloaded libraries\n")
+    switch = [c for c in calls if c[0] == 'switch_controller'][0][1][0]
+    assert (['a'], [], 2) == (switch.start_controllers, switch.stop_controllers, switch.strictness)
+
+
+def test_interface_failures_as_the_original(monkeypatch, capsys):
+    cmi, calls = fake_services(monkeypatch, ok=False)
+    assert not cmi.load_controller('x')
+    assert not cmi.unload_controller('x')
+    assert not cmi.start_controller('x')
+    assert not cmi.reload_libraries(False)
+    assert capsys.readouterr().out == (
+        "Error when loading 'x'\n"
+        "Error when unloading 'x'\n"
+        "Error when starting ['x'] and stopping []\n"
+        "Restore: False\nFailed to reload libraries. Do you still have controllers loaded?\n")
+
+
+def test_reload_restore_reloads_and_restarts(monkeypatch, capsys):
+    from controller_manager_msgs.msg import ControllerState
+    cmi, calls = fake_services(monkeypatch, controllers=[ControllerState(name='a', state='running'),
+                                                         ControllerState(name='b', state='stopped')])
+    assert cmi.reload_libraries(True, restore=True)
+    names = [c[0] for c in calls]
+    assert names == ['list_controllers', 'reload_controller_libraries', 'load_controller', 'load_controller',
+                     'switch_controller']
+    assert calls[-1][2]['start_controllers'] == ['a'] and calls[-1][2]['strictness'] == 1
+    assert capsys.readouterr().out.endswith('Controllers restored to original state\n')

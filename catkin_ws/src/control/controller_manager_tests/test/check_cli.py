@@ -36,20 +36,20 @@ class CliTest(unittest.TestCase):
 
     def test_load_start_stop_unload(self):
         rc, out = cli('load', 'effort_j1')
-        self.assertEqual((0, 'Loaded effort_j1'), (rc, out.strip()))
+        self.assertEqual((0, "Loaded 'effort_j1'"), (rc, out.strip()))
         rc, out = cli('lc')
         self.assertEqual(0, rc)
-        self.assertIn('effort_j1 - hardware_interface::EffortJointInterface ( initialized )', out)
+        self.assertIn("'effort_j1' - 'hardware_interface::EffortJointInterface' ( initialized )\n", out)
         rc, out = cli('start', 'effort_j1')
         self.assertEqual(0, rc, out)
-        self.assertIn('Started effort_j1 successfully', out)
-        self.assertIn('effort_j1 - hardware_interface::EffortJointInterface ( running )', cli('list')[1])
+        self.assertEqual("Started ['effort_j1'] successfully\n", out)
+        self.assertIn("'effort_j1' - 'hardware_interface::EffortJointInterface' ( running )\n", cli('list')[1])
         rc, out = cli('stop', 'effort_j1')
         self.assertEqual(0, rc, out)
-        self.assertIn('Stopped effort_j1 successfully', out)
+        self.assertEqual("Stopped ['effort_j1'] successfully\n", out)
         rc, out = cli('unload', 'effort_j1')
         self.assertEqual(0, rc, out)
-        self.assertIn('Unloaded effort_j1 successfully', out)
+        self.assertEqual("Unloaded 'effort_j1' successfully\n", out)
         self.assertIn('No controllers are loaded in mechanism control', cli('lc')[1])
 
     def test_spawn_and_kill(self):
@@ -65,26 +65,27 @@ class CliTest(unittest.TestCase):
     def test_errors(self):
         rc, out = cli('load', 'unknown_type')
         self.assertEqual(1, rc)
-        self.assertIn('Error when loading unknown_type', out)
+        self.assertIn("Error when loading 'unknown_type'", out)
         rc, out = cli('start', 'not_loaded')
         self.assertEqual(1, rc)
+        self.assertIn("Error when starting ['not_loaded'] and stopping []", out)
         rc, out = cli('frobnicate')
-        self.assertEqual(2, rc)
+        self.assertEqual(1, rc)
         self.assertIn("unknown command 'frobnicate'", out)
-        rc, out = cli('load')
-        self.assertEqual(2, rc)
+        self.assertIn('Commands:', out)
 
     def test_reload_libraries(self):
         self.assertTrue(self.cm.load('velocity_j2'))
         self.assertTrue(self.cm.load('state'))
         self.assertTrue(self.cm.switch(start=['velocity_j2']))
-        rc, out = cli('reload-libraries')
-        self.assertEqual(1, rc)
-        self.assertIn('Failed to reload libraries. Do you still have controllers loaded?', out)
         rc, out = cli('reload-libraries', '--restore')
         self.assertEqual(0, rc, out)
-        self.assertIn('Successfully reloaded libraries', out)
+        self.assertEqual('Restore: True\nSuccessfully reloaded libraries\nControllers restored to original state\n', out)
         self.assertEqual({'velocity_j2': 'running', 'state': 'initialized'}, self.cm.states())
+        # As the original script: without --restore the loaded controllers are killed.
+        rc, out = cli('reload-libraries')
+        self.assertEqual((0, 'Restore: False\nSuccessfully reloaded libraries\n'), (rc, out))
+        self.assertEqual({}, self.cm.states())
 
     def test_unspawner(self):
         self.assertTrue(self.cm.load('velocity_j2'))

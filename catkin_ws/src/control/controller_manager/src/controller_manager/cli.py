@@ -1,21 +1,21 @@
-"""Logic of the ``controller_manager`` command-line tool.
+"""Logic of the ``controller_manager`` command-line tool (as ros_control's script).
 
-    controller_manager <command> [args]
-      lt, list-types              list the controller types that can be loaded
-      lc, list                    list the loaded controllers with their state
-      reload-libraries [--restore]
-      load NAME...                load controllers
-      unload NAME...              unload controllers
-      start NAME...               start controllers
-      stop NAME...                stop controllers
-      sp, spawn NAME...           load and start controllers
-      kl, kill NAME...            stop and unload controllers
+    controller_manager <command> [names]
 """
 from __future__ import print_function
 
 import sys
 
-USAGE = __doc__.split('\n\n', 1)[1].rstrip()
+USAGE = '''Commands:
+    load <name>          - Load the controller named <name>
+    unload <name>        - Unload the controller named <name>
+    start <name>         - Start the controller named <name>
+    stop <name>          - Stop the controller named <name>
+    spawn <name>         - Load and start the controller named <name>
+    kill <name>          - Stop and unload the controller named <name>
+    list                 - List active controllers
+    list-types           - List controller Types
+    reload-libraries     - Reloads all plugin controller libraries'''
 
 COMMANDS = {
     'lt': 'list-types', 'list-types': 'list-types',
@@ -25,7 +25,6 @@ COMMANDS = {
     'sp': 'spawn', 'spawn': 'spawn',
     'kl': 'kill', 'kill': 'kill',
 }
-NEEDS_NAMES = {'load', 'unload', 'start', 'stop', 'spawn', 'kill'}
 
 
 class UsageError(Exception):
@@ -33,30 +32,24 @@ class UsageError(Exception):
 
 
 def parse(argv):
-    """argv (without the program name) → (command, names, options)."""
+    """argv (without the program name) → (command, names, options). No command → (None, [], {})."""
     if not argv:
-        raise UsageError('no command given')
+        return None, [], {}
     cmd = COMMANDS.get(argv[0])
     if cmd is None:
         raise UsageError("unknown command '%s'" % argv[0])
     rest = argv[1:]
     options = {'restore': False}
     if cmd == 'reload-libraries':
-        for a in rest:
-            if a == '--restore':
-                options['restore'] = True
-            else:
-                raise UsageError("reload-libraries: unknown argument '%s'" % a)
+        options['restore'] = '--restore' in rest
         rest = []
-    elif cmd in NEEDS_NAMES and not rest:
-        raise UsageError('%s: give at least one controller name' % cmd)
-    elif cmd not in NEEDS_NAMES and rest:
-        raise UsageError("%s takes no arguments" % cmd)
     return cmd, rest, options
 
 
 def run(cmd, names, options, api):
-    """Run a parsed command with ``api`` (controller_manager_interface or a fake); True = success."""
+    """Run a parsed command with ``api`` (controller_manager_interface or a fake); True = success.
+    As the original: ``spawn`` loads every name then starts each, ``kill`` stops every name then
+    unloads each, ``reload-libraries`` always force-kills the loaded controllers."""
     if cmd == 'list-types':
         api.list_controller_types()
         return True
@@ -64,31 +57,28 @@ def run(cmd, names, options, api):
         api.list_controllers()
         return True
     if cmd == 'reload-libraries':
-        return bool(api.reload_libraries(force_kill=options['restore'], restore=options['restore']))
+        return bool(api.reload_libraries(True, restore=options['restore']))
     ok = True
-    for name in names:
-        if cmd == 'load':
-            ok = api.load_controller(name) and ok
-        elif cmd == 'unload':
-            ok = api.unload_controller(name) and ok
-        elif cmd == 'start':
-            ok = api.start_controller(name) and ok
-        elif cmd == 'stop':
-            ok = api.stop_controller(name) and ok
-        elif cmd == 'spawn':
-            ok = api.load_controller(name) and api.start_controller(name) and ok
-        elif cmd == 'kill':
-            ok = api.stop_controller(name) and api.unload_controller(name) and ok
-    return bool(ok)
+    steps = {'load': ['load_controller'], 'unload': ['unload_controller'], 'start': ['start_controller'],
+             'stop': ['stop_controller'], 'spawn': ['load_controller', 'start_controller'],
+             'kill': ['stop_controller', 'unload_controller']}[cmd]
+    for step in steps:
+        for name in names:
+            ok = bool(getattr(api, step)(name)) and ok
+    return ok
 
 
 def main(argv, api=None):
+    """Exit status: 0 done, 1 a service refused or an unknown command (after the usage text)."""
     try:
         cmd, names, options = parse(argv)
     except UsageError as exc:
         print('controller_manager: %s' % exc, file=sys.stderr)
-        print(USAGE, file=sys.stderr)
-        return 2
+        print(USAGE)
+        return 1
+    if cmd is None:
+        print(USAGE)
+        return 0
     if api is None:  # service proxies need no node: nothing is registered with the master
         from controller_manager import controller_manager_interface as api
     return 0 if run(cmd, names, options, api) else 1
