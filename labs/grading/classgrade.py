@@ -24,7 +24,7 @@ from concurrent.futures import ThreadPoolExecutor
 import course_testing
 
 from grading import lab1, lab2, lab3, lab4, sandbox
-from grading.common import LABS_DIR, Criterion, reason
+from grading.common import LABS_DIR, Criterion, GradeError, load_variants, reason
 from grading.report import format_report, write_junit
 
 LAB_MODULES = {'lab1': lab1, 'lab2': lab2, 'lab3': lab3, 'lab4': lab4}
@@ -137,8 +137,10 @@ def fetch(spec, dest, deadline=None):
 
 
 class ClassGrader:
-    def __init__(self, lab, out, deadline=None, force=False, no_sandbox=False, timeout=None, log=sys.stderr):
+    def __init__(self, lab, out, deadline=None, force=False, no_sandbox=False, timeout=None, log=sys.stderr,
+                 variants=None):
         self.lab = lab
+        self.variants = os.path.abspath(variants) if variants else None   # labs/grade --variants
         self.out = os.path.abspath(out)
         self.deadline = deadline
         self.force = force
@@ -192,7 +194,7 @@ class ClassGrader:
             return self._save(d, {'isu': isu, 'repo': spec, 'commit': '', 'status': 'error', 'error': str(e),
                                   'criteria': None, 'seconds': time.monotonic() - t})
         if (old and not self.force and old.get('commit') == commit and old.get('status') in ('passed', 'failed')
-                and old.get('lab') == self.lab):
+                and old.get('lab') == self.lab and old.get('variants') == self.variants):
             shutil.rmtree(src, ignore_errors=True)
             old['reused'] = True
             return old
@@ -200,13 +202,16 @@ class ClassGrader:
                '--json', os.path.join(d, 'grade.json'), '--timeout', str(self.timeout),
                '--logs', os.path.join(d, 'logs'), '--hide', self.out]
         cmd.append('--no-sandbox' if self.no_sandbox else '--require-sandbox')
+        if self.variants:
+            cmd += ['--variants', self.variants]
         limit = self.timeout + BUILD_AND_SLACK
         for f in ('grade.json',):
             if os.path.exists(os.path.join(d, f)):
                 os.remove(os.path.join(d, f))
         rc, timed_out = course_testing.run(cmd, limit, log=os.path.join(d, 'grade.log'))
         shutil.rmtree(src, ignore_errors=True)
-        res = {'isu': isu, 'repo': spec, 'commit': commit, 'lab': self.lab, 'seconds': time.monotonic() - t}
+        res = {'isu': isu, 'repo': spec, 'commit': commit, 'lab': self.lab, 'seconds': time.monotonic() - t,
+               'variants': self.variants}
         gj = os.path.join(d, 'grade.json')
         if timed_out:
             res.update(status='error', error='the grading hung: stopped after %d s' % limit, criteria=None)
@@ -350,6 +355,8 @@ def main(argv=None):
     ap.add_argument('--force', action='store_true', help='re-grade every row, even at an unchanged commit')
     ap.add_argument('--no-sandbox', action='store_true', help='grade without the sandbox (trusted code only)')
     ap.add_argument('--timeout', type=float, help="the checker's time limit per row, s (default: the lab's)")
+    ap.add_argument('--variants', metavar='FILE', help="grade by this variant table instead of the textbook's "
+                    '(labs/grade --variants)')
     ap.add_argument('--task', type=int, help=argparse.SUPPRESS)   # one roster row (a Slurm array task)
     args = ap.parse_args(argv)
     try:
@@ -358,6 +365,11 @@ def main(argv=None):
         if args.jobs < 1:
             raise RosterError('--jobs must be at least 1, got %d' % args.jobs)
         rows, extra = read_roster(args.roster)
+        if args.variants:
+            try:
+                load_variants(args.lab, os.path.abspath(args.variants))
+            except GradeError as e:
+                raise RosterError(str(e))
         if not args.no_sandbox:
             why = sandbox.probe()
             if why:
@@ -368,7 +380,7 @@ def main(argv=None):
         return 2
     out = args.out or 'grade-class-%s' % args.lab
     os.makedirs(out, exist_ok=True)
-    g = ClassGrader(args.lab, out, args.deadline, args.force, args.no_sandbox, args.timeout)
+    g = ClassGrader(args.lab, out, args.deadline, args.force, args.no_sandbox, args.timeout, variants=args.variants)
     checked = g.check_rows(rows)
     valid = [(l, r) for l, r, e in checked if e is None]
     course_testing.become_subreaper()

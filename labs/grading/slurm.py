@@ -42,6 +42,8 @@ def run_array(g, args, valid):
         cmd += ['--deadline', args.deadline]
     if args.timeout:
         cmd += ['--timeout', str(args.timeout)]
+    if getattr(args, 'variants', None):
+        cmd += ['--variants', os.path.abspath(args.variants)]
     script = os.path.join(d, 'job.sh')
     with open(script, 'w') as f:
         f.write('#!/bin/bash\n'

@@ -364,3 +364,13 @@ def test_cli_writes_junit_only_where_asked(tmp_path):
     suite = ET.parse(str(cwd / 'out' / 'j.xml')).getroot().find('testsuite')
     props = {e.get('name'): e.get('value') for e in suite.iter('property')}
     assert props['variants'] == str(cwd / 'v.yaml') and sorted(os.listdir(str(cwd))) == ['out', 'v.yaml']
+
+
+def test_grade_class_checks_variants_first(tmp_path):
+    (tmp_path / 'roster.csv').write_text('isu,repo\n123451,%s\n' % tmp_path)
+    (tmp_path / 'v.yaml').write_text('variants:\n  1: {points: [[2, 3]]}\n')
+    p = subprocess.run([os.path.join(os.path.dirname(GRADE), 'grade-class'), 'lab2', '--roster', 'roster.csv',
+                        '--variants', 'v.yaml', '--no-sandbox', '--out', 'out'],
+                       stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=60, cwd=str(tmp_path))
+    assert p.returncode == 2 and p.stderr.strip().count('\n') == 0, p.stderr
+    assert 'no row for digit' in p.stderr and 'a lab2 table needs all ten' in p.stderr and not (tmp_path / 'out').exists()
