@@ -234,4 +234,12 @@ def test_page_connected_through_rosauth(stack):
     log = stack.launch.output()
     assert 'has authenticated.' in log, log[-3000:]
     assert 'did not authenticate' not in log, log[-3000:]
+    # a new connection (as after a rosbridge restart) authenticates with a new MAC: the
+    # first one would be refused as a replay
+    before = log.count('has authenticated.')
+    stack.js('courseWeb.ros().close()')
+    stack.wait(lambda: stack.launch.output().count('has authenticated.') > before and
+               stack.js('return courseWeb.connected()'), 'the page to reconnect and authenticate')
+    log = stack.launch.output()
+    assert 'did not authenticate' not in log, log[-3000:]
     assert TOKEN not in log.replace('?token=%s' % TOKEN, ''), 'the token leaked into a log line'
