@@ -7,7 +7,7 @@ and a private X display (the book's files start RViz, the simulator's window and
 sliders unconditionally):
 
 - PW3 (T §4.1-4.2) robot.launch with my_first_model.urdf and with diff_robot_model.urdf.xacro:
-  robot_state_publisher publishes the wheels' TF, RViz stays up;
+  robot_state_publisher publishes the wheels' TF, RViz stays up, `rosrun tf view_frames` draws it;
 - PW4 (T §5.1) sim.launch: $(find my_robot_model)/urdf/diff_robot_model_done.urdf.xacro,
   .../urdf/rviz_conf.rviz and .../worlds/empty.world; the robot stands on the floor and drives
   on /cmd_vel;
@@ -67,6 +67,13 @@ def test_pw3_robot_launch_as_printed(rviz_env, tmp_path, name):
         static = S.wait_topic('/tf_static', env, timeout=60, proc=p)
         assert 'caster' in {t['child_frame_id'] for t in static['transforms']}, static
         S.wait_output(p, 'process[rviz-', timeout=30)
+        if name == 'pw3_robot.launch':
+            # T §4.2: `rosrun tf view_frames` draws the tree into frames.pdf (and frames.gv)
+            out = S.sh(['rosrun', 'tf', 'view_frames'], env, cwd=tmp_path, timeout=120)
+            assert 'frames.pdf generated' in out, out
+            with open(tmp_path / 'frames.gv') as f:
+                graph = f.read()
+            assert '"wheel_left"' in graph and '"caster"' in graph, graph
         assert_all_alive(p, ['joint_state_publisher', 'robot_state_publisher', 'rviz'])
     finally:
         p.stop()
