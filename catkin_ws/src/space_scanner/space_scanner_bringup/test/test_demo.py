@@ -28,3 +28,14 @@ def test_demo_maps_the_office_then_reaches_every_goal(tmp_path):
     assert s['map_walls_found'] >= 0.95 and s['map_false_occupied'] <= 0.02, s
     assert s['slam_ate_rms_m'] <= 0.05 and s['amcl_ate_rms_m'] <= 0.05, s
     assert '=== main demo summary' in r.stdout
+
+
+def test_demo_prints_the_web_url_with_its_token(tmp_path):
+    """`make demo web:=true` prints the URL course_web_server printed, token included (the
+    page answers 403 without it)."""
+    from space_scanner_bringup.demo import printed_web_url
+    log = tmp_path / 'web.log'
+    log.write_text('... logging to ...\n\n    course_web: open http://localhost:8080/?token=ab12cd\n\n')
+    assert printed_web_url(str(log), 8080, timeout=1.0) == 'http://localhost:8080/?token=ab12cd'
+    missing = printed_web_url(str(tmp_path / 'none.log'), 8081, timeout=0.6)
+    assert missing.startswith('http://localhost:8081/?token=') and 'log' in missing

@@ -208,6 +208,22 @@ def draw_path(map_yaml, truth, png):
     im.save(png)
 
 
+def printed_web_url(log, port, timeout=60.0):
+    """The URL with its token that course_web_server printed in `log` (the page needs the
+    token; it is new at each start and only ever printed there)."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        try:
+            with open(log, errors='replace') as f:
+                for line in f:
+                    if 'course_web: open ' in line:
+                        return line.split('course_web: open ', 1)[1].strip()
+        except OSError:
+            pass
+        time.sleep(0.5)
+    return 'http://localhost:%d/?token=... (printed in the log once course_web starts)' % port
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description='The space scanner maps the office, then navigates on its map.')
     ap.add_argument('--out', default='build/demo', help='output folder (default build/demo)')
@@ -252,9 +268,10 @@ def main(argv=None):
         rospy.set_param('/use_sim_time', True)
         rospy.init_node('demo', anonymous=True, disable_signals=True)
         if args.web:    # on the demo's master for both phases
-            web = Proc(['roslaunch', 'course_web', 'web.launch', 'port:=%d' % args.web_port], env=env,
-                       log=os.path.join(out, 'web.log'))
-            say('web view: http://localhost:%d (log %s)' % (args.web_port, os.path.join(out, 'web.log')))
+            web_log = os.path.join(out, 'web.log')
+            web = Proc(['roslaunch', 'course_web', 'web.launch', 'port:=%d' % args.web_port],
+                       env=env, log=web_log)
+            say('web view: %s (log %s)' % (printed_web_url(web_log, args.web_port), web_log))
         t_wall = time.monotonic()
         elapsed, finished, truth1, est1, base = explore(out, env, display, args.explore_time, say)
         say('exploration %s after %.0f s of simulated time; map saved to %s.yaml/.pgm' % (
