@@ -25,7 +25,7 @@ ZERO_MASS = ROBOT.replace('<mass value="0.5"/>', '<mass value="0"/>')
 
 
 def svc(name, typ):
-    rospy.wait_for_service(name, timeout=20)
+    rospy.wait_for_service(name, timeout=120)   # a hang guard: a loaded machine starts slowly
     return rospy.ServiceProxy(name, typ)
 
 
