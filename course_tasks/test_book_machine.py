@@ -26,6 +26,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 BOOK = os.path.join(HERE, 'book')
 RULES = os.path.join(S.REPO, 'deps', 'rosdep', 'ros-course.yaml')
 LISTS = '/etc/ros/rosdep/sources.list.d'
+DEBIAN_RULES = '/usr/share/python3-rosdep2/debian.yaml'
 
 # every course, lab and diploma package (each its own `--from-paths`: the labs' starter and
 # reference share a package name)
@@ -93,6 +94,22 @@ def test_course_rules_define_every_key():
         assert isinstance(rule['debian'], (list, dict)), key
 
 
+def test_course_rules_define_every_workspace_key():
+    """The book's `rosdep install --from-paths src --ignore-src` in catkin_ws (scripts/setup.sh runs
+    it) needs every key of every workspace package too: in the course's rules or in Debian's own
+    (python3-rosdep2's debian.yaml, registered next to them)."""
+    with open(RULES) as f:
+        rules = dict(yaml.safe_load(f))
+    with open(DEBIAN_RULES) as f:
+        rules.update(yaml.safe_load(f))
+    missing = {}
+    for p in sorted(glob.glob(os.path.join(S.REPO, 'catkin_ws', 'src', '**', 'package.xml'), recursive=True)):
+        d = os.path.dirname(p)
+        for key in sorted(_keys(d) - set(rules)):
+            missing.setdefault(key, []).append(os.path.relpath(d, S.REPO))
+    assert not missing, 'rosdep keys missing from deps/rosdep/ros-course.yaml: %s' % missing
+
+
 @pytest.fixture(scope='module')
 def rosdep_env(tmp_path_factory):
     """The student's shell with a fresh rosdep cache after `rosdep update` (ROS_HOME: private)."""
@@ -138,3 +155,12 @@ def test_rosdep_install_simulate(rosdep_env, package_dir):
         'rosdep would install packages for %s:\n%s' % (package_dir, out)
     rc, out, err = S.sh_rc(['rosdep', 'check', '--from-paths', path, '--ignore-src'], rosdep_env, timeout=120)
     assert rc == 0 and re.search(r'All system dependencies have been satisf(i)?ied', out), out + err
+
+
+def test_rosdep_install_in_the_workspace_as_printed(rosdep_env):
+    """T §1.6 word for word in catkin_ws: `rosdep install --from-paths src --ignore-src` (-y)."""
+    ws = os.path.join(S.REPO, 'catkin_ws')
+    rc, out, err = S.sh_rc(['rosdep', 'install', '--from-paths', 'src', '--ignore-src', '-y', '--simulate'],
+                           rosdep_env, cwd=ws, timeout=300)
+    assert rc == 0 and 'Cannot locate rosdep definition' not in out + err, out + err
+    assert not [l for l in out.splitlines() if l.strip() and not l.startswith('#')], out
