@@ -151,6 +151,20 @@ def mode_services():
     out['after_window'] = [r.position[0], r.rate[0], sim_time() - t0]
     box = svc('/gazebo/get_model_state', gs.GetModelState)('box', '')
     out['box_z'] = box.pose.position.z        # no gravity: still at 1.0
+    # a wrench on the floating box: force at the centre of mass, point x force as torque
+    from geometry_msgs.msg import Point, Wrench
+    w = Wrench()
+    w.force.x = 1.0
+    t2 = sim_time()
+    r = svc('/gazebo/apply_body_wrench', gs.ApplyBodyWrench)(
+        'box::link', '', Point(0, 1, 0), w, rospy.Time(0), rospy.Duration.from_sec(0.1))
+    out['wrench'] = [r.success, r.status_message]
+    r = svc('/gazebo/apply_body_wrench', gs.ApplyBodyWrench)(
+        'nothing::link', '', Point(), w, rospy.Time(0), rospy.Duration(1))
+    out['wrench_missing'] = [r.success, r.status_message]
+    run_until(t2 + 0.3)
+    box = svc('/gazebo/get_model_state', gs.GetModelState)('box', '')
+    out['box_twist'] = [box.twist.linear.x, box.twist.angular.z]
     # a forever effort, cleared
     t1 = sim_time()
     apply('shoulder', 0.1, rospy.Time(0), rospy.Duration(-1))

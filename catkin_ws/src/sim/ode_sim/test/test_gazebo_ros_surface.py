@@ -99,6 +99,12 @@ def test_services_answer_with_gazebos_fields_and_texts(roscore, tmp_path):
     assert out['box_after'] == [2.0, False, pytest.approx(0.02)]
     assert out['set_no_link'][0] is False
     assert out['box_z'] == pytest.approx(1.0, abs=1e-3)     # gravity off: it stays in the air
+    # 1 N along x at the centre of mass for 0.1 s (101 steps), torque (0,1,0) x (1,0,0) = -z
+    assert out['wrench'] == [True, '']
+    assert out['wrench_missing'] == [False, 'ApplyBodyWrench: body does not exist']
+    vx, wz = out['box_twist']
+    assert vx == pytest.approx(1.0 * 0.101 / 2.0, rel=0.03)
+    assert wz == pytest.approx(-1.0 * 0.101 / 0.02, rel=0.03)
     # joints; the effort acts only inside its sim-time window [t0 + 1.0, t0 + 1.2]
     assert out['no_joint'] == [False, 'GetJointProperties: joint not found']
     assert out['apply'] == [True, 'ApplyJointEffort: effort set']

@@ -539,10 +539,14 @@ class GazeboApi:
                 rospy.logerr('ApplyBodyWrench: reference_frame is not a valid entity name')
                 return gs.ApplyBodyWrenchResponse(False,
                                                   'ApplyBodyWrench: reference_frame not found')
+            # as Gazebo: the force acts at the centre of mass, the reference point adds
+            # point x force to the torque (both in the reference frame's axes)
             rpose = ref[0]
-            f = rpose.rotate(vector(req.wrench.force))
-            tau = rpose.rotate(vector(req.wrench.torque))
-            point = link.pose().apply(vector(req.reference_point))
+            force = vector(req.wrench.force)
+            torque = vector(req.wrench.torque) + np.cross(vector(req.reference_point), force)
+            f = rpose.rotate(force)
+            tau = rpose.rotate(torque)
+            point = None
             start = max(req.start_time.to_sec(), self.physics.time)
             self._wrenches.append(Job(link, (f, tau, point), start, req.duration.to_sec()))
         return gs.ApplyBodyWrenchResponse(True, '')
