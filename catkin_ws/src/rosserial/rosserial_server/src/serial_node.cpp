@@ -3,6 +3,7 @@
 // The port is (re)opened every 0.2 s until it exists; when it vanishes (USB unplugged, the pty's
 // other side closed) the session ends and the port is opened again.
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <thread>
 
@@ -13,6 +14,7 @@
 
 int main(int argc, char** argv)
 {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);   // log lines reach a redirected stdout at once
   ros::init(argc, argv, "rosserial_server_serial_node");
   ros::NodeHandle pnh("~");
   ros::NodeHandle nh;

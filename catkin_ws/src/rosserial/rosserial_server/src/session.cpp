@@ -510,7 +510,7 @@ void Session::handleParameterRequest(const std::vector<uint8_t>& payload)
 {
   const rosserial_msgs::RequestParamRequest req = decode<rosserial_msgs::RequestParamRequest>(payload);
   XmlRpc::XmlRpcValue value;
-  if (!nh_.getParam(req.name, value))
+  if (!ros::param::get(req.name, value))   // relative to the node, "~x" = its private x
   {
     ROS_ERROR("Parameter %s does not exist", req.name.c_str());
     return;

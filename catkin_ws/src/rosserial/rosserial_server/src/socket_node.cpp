@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <list>
@@ -22,6 +23,7 @@
 
 int main(int argc, char** argv)
 {
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);   // log lines reach a redirected stdout at once
   ros::init(argc, argv, "rosserial_server_socket_node");
   ros::NodeHandle pnh("~");
   ros::NodeHandle nh;

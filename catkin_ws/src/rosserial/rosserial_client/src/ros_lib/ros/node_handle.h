@@ -484,8 +484,10 @@ public:
     {
       if (length == (int)req_param_resp.strings_length)
       {
+        // as the original: copied into the caller's buffers (param[i] must point to room for
+        // the string and its NUL)
         for (int i = 0; i < length; i++)
-          param[i] = (char *)req_param_resp.strings[i];
+          strcpy(param[i], req_param_resp.strings[i]);
         return true;
       }
       logwarn("Failed to get param: length mismatch");

@@ -1,0 +1,130 @@
+"""rosserial_server as its users run it, with a private roscore:
+- socket.launch (socket_node, TCP) with a host client built from rosserial_client's ros_lib over
+  a TCP hardware class: a device publisher reaches ROS, a ROS message reaches the device's
+  subscriber, the device serves a service, calls a ROS service, reads parameters;
+- serial.launch (serial_node) with sketches on the emulated Mega (simavr) on a pty: hello_world,
+  and adc_service (a workspace message, a device service, a `~` parameter); the port vanishing
+  and coming back is reopened."""
+import os
+import re
+import shutil
+import subprocess
+import sys
+
+import pytest
+import rospkg
+
+from course_testing import Proc, RosCore, wait_for
+from course_testing.proc import free_port
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.abspath(os.path.join(HERE, *['..'] * 5))
+
+
+@pytest.fixture
+def core(tmp_path):
+    c = RosCore(log_dir=str(tmp_path / 'ros_log'))
+    c.start()
+    yield c
+    c.stop()
+
+
+@pytest.fixture(scope='module')
+def host_client(tmp_path_factory):
+    from rosserial_client.make_library import PRIMITIVES_GENERIC, make_library
+    tmp = tmp_path_factory.mktemp('client')
+    rp = rospkg.RosPack()
+    lib = str(tmp / 'ros_lib')
+    pkgs = dict((p, rp.get_path(p)) for p in ('std_msgs', 'std_srvs', 'rosserial_msgs'))
+    assert make_library(lib, [], PRIMITIVES_GENERIC, packages=pkgs) == []
+    exe = str(tmp / 'host_client')
+    gxx = shutil.which('g++')
+    assert gxx, 'g++ is missing'
+    p = subprocess.run([gxx, '-std=c++17', '-Wall', '-Wextra', '-Werror', '-Wno-unused-parameter',
+                        '-I', lib, os.path.join(HERE, 'host_client.cpp'),
+                        os.path.join(lib, 'time.cpp'), os.path.join(lib, 'duration.cpp'),
+                        '-o', exe], capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-4000:]
+    return exe
+
+
+def echo(core, topic, timeout=90):
+    p = subprocess.run(['rostopic', 'echo', '-n', '1', topic], env=core.env,
+                       capture_output=True, text=True, timeout=timeout)
+    assert p.returncode == 0, p.stderr
+    return p.stdout
+
+
+def test_socket_node_with_a_tcp_client(core, host_client, tmp_path):
+    port = free_port()
+    subprocess.run(['rosparam', 'set', 'int_value', '1'], env=core.env, check=True, timeout=60)
+    subprocess.run(['rosparam', 'set', 'float_value', '0.5'], env=core.env, check=True, timeout=60)
+    subprocess.run(['rosparam', 'set', 'bool_value', 'true'], env=core.env, check=True, timeout=60)
+    subprocess.run(['rosparam', 'set', 'string_value', 'sample text'], env=core.env, check=True,
+                   timeout=60)
+    server = Proc(['roslaunch', 'rosserial_server', 'socket.launch', 'port:=%d' % port],
+                  env=core.env, log=str(tmp_path / 'server.log'))
+    ros_srv = Proc([sys.executable, '-c',
+                    'import rospy\nfrom std_srvs.srv import Trigger, TriggerResponse\n'
+                    'rospy.init_node("ros_srv")\n'
+                    'rospy.Service("ros_srv", Trigger, lambda r: TriggerResponse(True, "hello from ROS"))\n'
+                    'rospy.spin()\n'], env=core.env, log=str(tmp_path / 'ros_srv.log'))
+    client = Proc([host_client, str(port)], env=core.env, log=str(tmp_path / 'client.log'))
+    try:
+        wait_for(lambda: 'Setup publisher on chatter [std_msgs/String]' in server.output(), 90,
+                 what='negotiation in the server log:\n' + server.output()[-3000:])
+        assert 'data: "from-rosserial-client"' in echo(core, '/chatter')
+        wait_for(lambda: 'params ' in client.output(), 60, what='params in the client output')
+        assert 'params 1 1 0.5 1 sample text' in client.output(), client.output()
+        # ROS -> device subscriber -> device publisher
+        pub = Proc(['rostopic', 'pub', '-r', '2', '/words', 'std_msgs/String', 'data: hi device'],
+                   env=core.env)
+        try:
+            assert 'data: "echo: hi device"' in echo(core, '/echo')
+        finally:
+            pub.stop()
+        # a service served by the device
+        p = subprocess.run(['rosservice', 'call', '/test_srv'], env=core.env, capture_output=True,
+                           text=True, timeout=90)
+        assert p.returncode == 0, p.stderr
+        assert 'success: True' in p.stdout and 'served by the client' in p.stdout, p.stdout
+        # the device calls a ROS service
+        wait_for(lambda: 'called hello from ROS' in client.output(), 90,
+                 what='the device calling ros_srv:\n' + client.output()[-2000:])
+        assert client.alive() and server.alive()
+    finally:
+        client.stop()
+        ros_srv.stop()
+        server.stop()
+
+
+def test_serial_node_with_sketches_in_the_simulator(core, tmp_path):
+    sys.path.insert(0, os.path.join(REPO, 'firmware', 'hil'))
+    import harness
+    elf = harness.build('adc_service')
+    # serial_node's private parameter, read once by the sketch with getParam("~adc_offset")
+    subprocess.run(['rosparam', 'set', '/rosserial_server/adc_offset', '7'], env=core.env,
+                   check=True, timeout=60)
+    sim = harness.Simulation(elf)
+    server = Proc(['roslaunch', 'rosserial_server', 'serial.launch', 'port:=%s' % sim.pty],
+                  env=core.env, log=str(tmp_path / 'server.log'))
+    try:
+        wait_for(lambda: 'Setup service server on test_srv [rosserial_arduino/Test]'
+                 in server.output(), 90, what='negotiation:\n' + server.output()[-3000:])
+        assert 'Setup publisher on adc [rosserial_arduino/Adc]' in server.output()
+        # the first message may precede the parameter's reply
+        wait_for(lambda: 'adc5: 7' in echo(core, '/adc'), 90, what='~adc_offset applied')
+        p = subprocess.run(['rosservice', 'call', '/test_srv', 'input: "rosserial"'],
+                           env=core.env, capture_output=True, text=True, timeout=90)
+        assert p.returncode == 0, p.stderr
+        assert 'output: "lairessor"' in p.stdout, p.stdout
+        # an MCU reset: renegotiated without restarting the server
+        before = server.output().count('Setup publisher on adc')
+        sim.command('reset')
+        wait_for(lambda: server.output().count('Setup publisher on adc') > before, 90,
+                 what='renegotiation after the reset:\n' + server.output()[-2000:])
+        assert 'adc0:' in echo(core, '/adc')
+        assert server.alive()
+    finally:
+        server.stop()
+        sim.stop()
