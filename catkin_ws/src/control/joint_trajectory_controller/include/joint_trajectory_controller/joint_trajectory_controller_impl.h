@@ -7,6 +7,8 @@
 
 #include <angles/angles.h>
 #include <ros/console.h>
+#include <ros/names.h>
+#include <ros/param.h>
 #include <urdf/model.h>
 
 namespace joint_trajectory_controller
@@ -45,19 +47,26 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
   }
   const unsigned int n_joints = joint_names_.size();
 
-  // Continuous joints of the robot description wrap around.
+  // Continuous joints of the robot description wrap around. As the original: the description in
+  // the controller manager's namespace, else the nearest 'robot_description' above it.
   std::string urdf_string;
+  std::string urdf_param = root_nh.resolveName("robot_description");
   if (!root_nh.getParam("robot_description", urdf_string))
   {
-    ROS_ERROR_STREAM_NAMED(name_, "Could not find the robot description in parameter '"
-                                      << root_nh.resolveName("robot_description") << "'.");
-    return false;
+    // As the original's fallback to the global description: search up the namespaces.
+    if (!root_nh.searchParam("robot_description", urdf_param))
+      urdf_param = ros::names::resolve("robot_description");
+    if (!ros::param::get(urdf_param, urdf_string))
+    {
+      ROS_ERROR_STREAM_NAMED(name_, "Could not find the robot description in parameter '"
+                                        << root_nh.resolveName("robot_description") << "' nor '" << urdf_param << "'.");
+      return false;
+    }
   }
   urdf::Model urdf;
   if (!urdf.initString(urdf_string))
   {
-    ROS_ERROR_STREAM_NAMED(name_, "Failed to parse the URDF in parameter '" << root_nh.resolveName("robot_description")
-                                                                            << "'.");
+    ROS_ERROR_STREAM_NAMED(name_, "Failed to parse URDF contained in '" << urdf_param << "' parameter");
     return false;
   }
   angle_wraparound_.assign(n_joints, false);
