@@ -182,3 +182,42 @@ def test_scene_markers_colour_a_collada_model_by_its_materials():
     tex = mk.colors[-1]                    # white x the texture's mean: half green, half blue
     assert tex.r == pytest.approx(0.0) and tex.g == pytest.approx(100 / 255, abs=0.01) and \
         tex.b == pytest.approx(100 / 255, abs=0.01)
+
+
+def test_collada_transparency_is_blended(tmp_path):
+    """The red <phong> made half transparent (<transparent opaque="A_ONE"> white,
+    <transparency> 0.5): seen from the side against a blue background the lower step is a mix
+    of its red and the blue behind it; opaque it hides the blue."""
+    import shutil
+    model = tmp_path / 'glass_block'
+    shutil.copytree(os.path.join(MODELS, 'step_block'), str(model))
+    dae = model / 'meshes' / 'step_block.dae'
+    dae.write_text(dae.read_text().replace(
+        '<shininess><float>20</float></shininess>',
+        '<shininess><float>20</float></shininess><transparent opaque="A_ONE"><color>1 1 1 1'
+        '</color></transparent><transparency><float>0.5</float></transparency>'))
+    (model / 'model.sdf').write_text((model / 'model.sdf').read_text().replace(
+        'model://step_block', 'model://glass_block'))
+    eye = (-0.25, 3.0, 0.1)
+    pose = Pose.from_xyz_rpy(eye, (0.0, 0.0, -math.pi / 2))
+
+    def look(models_dir, name):
+        w = sdf.parse_world('<sdf version="1.6"><world name="w"><include><uri>model://%s</uri>'
+                            '</include></world></sdf>' % name, str(tmp_path / 'w.world'),
+                            paths=ModelPaths.only([models_dir]))
+        pw = PhysicsWorld(w.physics, w.gravity)
+        for m in w.models:
+            pw.add_model(m)
+        r = Renderer(W, H, HFOV)
+        try:
+            r.set_scene(pw.visual_shapes(), lights=[LIGHT], ambient=(0.4, 0.4, 0.4, 1),
+                        background=(0.0, 0.0, 1.0, 1))
+            rgb, _ = r.render(pose)
+        finally:
+            r.release()
+        return rgb.astype(int)[H // 2 - 2:H // 2 + 3, W // 2 - 2:W // 2 + 3].reshape(-1, 3).mean(0)
+
+    opaque = look(MODELS, 'step_block')
+    glass = look(str(tmp_path), 'glass_block')
+    assert opaque[0] > 60 and opaque[2] < 10, opaque            # ambient-lit red side
+    assert 25 < glass[0] < opaque[0] - 20 and glass[2] > 100, glass   # half red, half blue
