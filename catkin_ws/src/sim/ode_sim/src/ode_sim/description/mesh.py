@@ -20,7 +20,7 @@ import struct
 import urllib.parse
 import warnings
 from dataclasses import dataclass, field
-from typing import List, Optional, Tuple
+from typing import List, Optional
 
 import numpy as np
 
