@@ -21,7 +21,7 @@ import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
 
-import course_testing
+import course_runtime
 
 from grading import lab1, lab2, lab3, lab4, sandbox
 from grading.common import LABS_DIR, Criterion, GradeError, load_variants, reason
@@ -208,7 +208,7 @@ class ClassGrader:
         for f in ('grade.json',):
             if os.path.exists(os.path.join(d, f)):
                 os.remove(os.path.join(d, f))
-        rc, timed_out = course_testing.run(cmd, limit, log=os.path.join(d, 'grade.log'))
+        rc, timed_out = course_runtime.run(cmd, limit, log=os.path.join(d, 'grade.log'))
         shutil.rmtree(src, ignore_errors=True)
         res = {'isu': isu, 'repo': spec, 'commit': commit, 'lab': self.lab, 'seconds': time.monotonic() - t,
                'variants': self.variants}
@@ -383,7 +383,7 @@ def main(argv=None):
     g = ClassGrader(args.lab, out, args.deadline, args.force, args.no_sandbox, args.timeout, variants=args.variants)
     checked = g.check_rows(rows)
     valid = [(l, r) for l, r, e in checked if e is None]
-    course_testing.become_subreaper()
+    course_runtime.become_subreaper()
     try:
         if args.task is not None:           # one Slurm array task: grade one valid row
             g.jobs = 1
@@ -403,7 +403,7 @@ def main(argv=None):
         g.gradebook(checked, extra)
         return 130
     finally:
-        course_testing.reap_orphans()
+        course_runtime.reap_orphans()
     table = g.gradebook(checked, extra)
     counts = {s: sum(1 for r in table if r['status'] == s) for s in ('passed', 'failed', 'error')}
     print('[grade-class] gradebook: %s (passed %d, failed %d, error %d)'

@@ -15,7 +15,7 @@ import sys
 import tempfile
 import time
 
-import course_testing
+import course_runtime
 import yaml
 
 from grading import lab1, lab2, lab3, lab4, sandbox
@@ -190,7 +190,7 @@ def main(argv=None):
     ap.add_argument('--logs', help=argparse.SUPPRESS)
     ap.add_argument('--require-sandbox', action='store_true', help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
-    course_testing.become_subreaper()   # nodes orphaned by a crashed launch come back to us
+    course_runtime.become_subreaper()   # nodes orphaned by a crashed launch come back to us
     try:
         if args.lab not in LAB_MODULES:
             raise GradeError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LAB_MODULES))))
@@ -227,7 +227,7 @@ def main(argv=None):
         print('labs/grade: interrupted', file=sys.stderr)
         return 130
     finally:
-        course_testing.reap_orphans()   # nothing of the student's run outlives the grader
+        course_runtime.reap_orphans()   # nothing of the student's run outlives the grader
     print(format_report(args.lab, isu, crits, note=note))
     if args.junit:
         os.makedirs(os.path.dirname(os.path.abspath(args.junit)), exist_ok=True)

@@ -13,7 +13,7 @@ import time
 import rosgraph
 import roslib.message
 import rospy
-from course_testing import SOFTWARE_GL, stop_tree
+from course_runtime import SOFTWARE_GL, stop_tree
 
 IGNORED_NODES = ('/rosout',)
 
@@ -372,8 +372,8 @@ class Lab3Observer:
     def _step(self, cmd, name):
         """(rc or None on timeout, combined output) of a short command."""
         log = os.path.join(self.logdir, name + '.log')
-        import course_testing
-        rc, timed_out = course_testing.run(cmd, self.lab3.STEP_TIMEOUT, cwd=self.logdir, log=log)
+        import course_runtime
+        rc, timed_out = course_runtime.run(cmd, self.lab3.STEP_TIMEOUT, cwd=self.logdir, log=log)
         with open(log, errors='replace') as f:
             return (None if timed_out else rc), f.read()
 
@@ -433,7 +433,7 @@ class Lab3Observer:
         env = dict(os.environ)
         xvfb = None
         if not env.get('DISPLAY'):
-            from course_testing import Xvfb
+            from course_runtime import Xvfb
             xvfb = Xvfb(1600, 1000)
             xvfb.start()
             env['DISPLAY'] = xvfb.display

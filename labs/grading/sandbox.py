@@ -27,7 +27,7 @@ import shutil
 import subprocess
 import time
 
-from course_testing import SOFTWARE_GL
+from course_runtime import SOFTWARE_GL
 from grading.common import LABS_DIR
 
 REPO = os.path.dirname(LABS_DIR)

@@ -5,7 +5,7 @@ import shutil
 import subprocess
 import xml.etree.ElementTree as ET
 
-import course_testing
+import course_runtime
 
 from grading.common import GradeError, LABS_DIR, reason
 
@@ -56,7 +56,7 @@ def locate(repo, name):
 def run_group(cmd, timeout, env=None, cwd=None, log=None):
     """Run cmd in its own process group, output to `log`; on timeout stop its whole process
     tree (rostest's nodes live in sessions of their own). Returns (rc, timed_out)."""
-    return course_testing.run(cmd, timeout, env=env, cwd=cwd, log=log or os.devnull)
+    return course_runtime.run(cmd, timeout, env=env, cwd=cwd, log=log or os.devnull)
 
 
 def sourced_env(script, base=None, timeout=60, wrap=None):

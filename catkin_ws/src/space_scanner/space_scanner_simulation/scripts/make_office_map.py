@@ -10,7 +10,7 @@ import sys
 
 import rospkg
 
-from course_testing import world_map
+from course_runtime import world_map
 
 SCAN_HEIGHT = 0.12         # m above the floor: chassi_bot's laser frame
 RESOLUTION = 0.05

@@ -24,7 +24,7 @@ import time
 
 import numpy as np
 
-from course_testing import Proc, RosCore
+from course_runtime import Proc, RosCore
 from space_scanner_bringup import metrics
 
 GOALS = [   # (x, y) in the office: middle room, the corridor, left room, right room, back home

@@ -2,7 +2,7 @@
 import os
 import tempfile
 
-from course_testing.proc import Proc, free_port, wait_for
+from course_runtime.proc import Proc, free_port, wait_for
 
 
 class RosCore:
@@ -48,7 +48,7 @@ class RosCore:
             raise RuntimeError('roscore exited early:\n' + self.proc.output()[-2000:])
         import rosgraph
         try:
-            master = rosgraph.Master('/course_testing', master_uri=self.uri)
+            master = rosgraph.Master('/course_runtime', master_uri=self.uri)
             # the master answering must be ours (our roscore's child), not another test's
             if not _descends_from(master.getPid(), self.proc.pid):
                 return False

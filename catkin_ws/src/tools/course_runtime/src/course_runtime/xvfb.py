@@ -3,7 +3,7 @@ import os
 import select
 import subprocess
 
-from course_testing.proc import Proc
+from course_runtime.proc import Proc
 
 # OpenGL drawn by Mesa's softpipe, which has no JIT: Debian 12's llvmpipe compiles every shader
 # with LLVM 15, which crashes now and then inside libLLVM (RViz died at start-up with SIGSEGV

@@ -13,7 +13,7 @@ import subprocess
 import time
 from contextlib import contextmanager
 
-from course_testing.proc import stop_tree
+from course_runtime.proc import stop_tree
 
 
 class CpuLoad:
