@@ -7,6 +7,7 @@
 #include <map>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 namespace rosserial_server
 {
@@ -130,6 +131,19 @@ const ServiceInfo lookupService(const std::string& service_type)
   info.response_md5sum = strAttr(res.get(), "_md5sum", service_type + "Response");
   g_services[service_type] = info;
   return info;
+}
+
+void warmUpLookups()
+{
+  std::thread([] {
+    try
+    {
+      lookupMessage("std_msgs/Time");
+    }
+    catch (const std::exception&)
+    {
+    }
+  }).detach();
 }
 
 }  // namespace rosserial_server

@@ -9,6 +9,7 @@
 
 #include <ros/ros.h>
 
+#include "rosserial_server/msg_lookup.h"
 #include "rosserial_server/session.h"
 #include "rosserial_server/stream.h"
 
@@ -25,6 +26,7 @@ int main(int argc, char** argv)
   double sync_timeout;
   pnh.param<double>("sync_timeout", sync_timeout, 15.0);
 
+  rosserial_server::warmUpLookups();
   ros::AsyncSpinner spinner(2);   // subscriptions and service calls beside the read loop
   spinner.start();
 

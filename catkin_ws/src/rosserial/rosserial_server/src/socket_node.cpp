@@ -18,6 +18,7 @@
 
 #include <ros/ros.h>
 
+#include "rosserial_server/msg_lookup.h"
 #include "rosserial_server/session.h"
 #include "rosserial_server/stream.h"
 
@@ -53,6 +54,7 @@ int main(int argc, char** argv)
   std::cout << "Listening on port " << port << std::endl;
   ROS_INFO("Listening for rosserial TCP connections on port %d", port);
 
+  rosserial_server::warmUpLookups();
   ros::AsyncSpinner spinner(2);
   spinner.start();
 

@@ -69,7 +69,8 @@ def test_socket_node_with_a_tcp_client(core, host_client, tmp_path):
                     'rospy.init_node("ros_srv")\n'
                     'rospy.Service("ros_srv", Trigger, lambda r: TriggerResponse(True, "hello from ROS"))\n'
                     'rospy.spin()\n'], env=core.env, log=str(tmp_path / 'ros_srv.log'))
-    client = Proc([host_client, str(port)], env=core.env, log=str(tmp_path / 'client.log'))
+    client = Proc([host_client, str(port)], env=dict(core.env, CALL_ROS_SRV='1'),
+                  log=str(tmp_path / 'client.log'))
     try:
         wait_for(lambda: 'Setup publisher on chatter [std_msgs/String]' in server.output(), 90,
                  what='negotiation in the server log:\n' + server.output()[-3000:])
@@ -128,3 +129,34 @@ def test_serial_node_with_sketches_in_the_simulator(core, tmp_path):
     finally:
         server.stop()
         sim.stop()
+
+
+def test_serial_node_reopens_the_port_for_each_new_device(core, host_client, tmp_path):
+    """As the original rosserial_test's serial fixture: serial_node is started on a path that
+    does not exist yet; each client makes a new pty and symlinks its slave there, talks, and
+    closes it; the next one is served without restarting serial_node."""
+    link = str(tmp_path / 'rosserial_pty')
+    server = Proc(['roslaunch', 'rosserial_server', 'serial.launch', 'port:=%s' % link],
+                  env=core.env, log=str(tmp_path / 'server.log'))
+    try:
+        wait_for(lambda: 'Unable to open port %s' % link in server.output(), 90,
+                 what='serial_node waiting for the port')
+        for n in (1, 2):
+            client = Proc([host_client, link], env=core.env, log=str(tmp_path / ('c%d.log' % n)))
+            try:
+                wait_for(lambda: server.output().count('Setup subscriber on words') >= n, 90,
+                         what='negotiation %d:\n%s' % (n, server.output()[-2000:]))
+                assert 'data: "from-rosserial-client"' in echo(core, '/chatter')
+                pub = Proc(['rostopic', 'pub', '-r', '2', '/words', 'std_msgs/String',
+                            'data: pty %d' % n], env=core.env)
+                try:
+                    assert 'data: "echo: pty %d"' % n in echo(core, '/echo')
+                finally:
+                    pub.stop()
+            finally:
+                client.stop()
+            wait_for(lambda: server.output().count('closed') >= n, 60,
+                     what='serial_node noticing the pty closed')
+        assert server.alive()
+    finally:
+        server.stop()

@@ -26,6 +26,10 @@ struct ServiceInfo
 const MsgInfo lookupMessage(const std::string& message_type);
 const ServiceInfo lookupService(const std::string& service_type);
 
+// Start the interpreter and import roslib.message in a background thread, so the first device's
+// negotiation does not wait for it (a device's getParam() gives up after 1 s).
+void warmUpLookups();
+
 }  // namespace rosserial_server
 
 #endif
