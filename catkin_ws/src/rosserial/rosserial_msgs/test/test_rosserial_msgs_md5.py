@@ -8,6 +8,8 @@ NOETIC_MD5 = {
     ('msg', 'TopicInfo'): '0ad51f88fc44892f8c10684077646005',
     ('msg', 'Log'): '11abd731c25933261cd6183bd12d6295',
     ('srv', 'RequestParam'): 'd7a0c2be00c9fd03cc69f2863de9c4d9',
+    ('srv', 'RequestMessageInfo'): '6416d80296dfbbdd5f7b2cee839f9316',
+    ('srv', 'RequestServiceInfo'): '0961604b984b94b0b68e8074882be071',
 }
 
 
