@@ -392,3 +392,86 @@ def main(argv, prim, extra_dirs=(), prog='make_libraries'):
         print('Failed to build %d messages of the packages: %s' % (len(failed), ', '.join(pkgs)))
         return 1
     return 0
+
+
+# -- the original make_library's module API, for scripts written against it ------------------
+# (rosserial_test's generate_client_ros_lib.py, board packages' make_libraries scripts):
+#   from rosserial_client.make_library import *
+#   rosserial_client_copy_files(rospack, path + '/')
+#   rosserial_generate(rospack, path, {'float64': ('float', 8, AVR_Float64DataType, []), ...})
+# The mapping's entries are (C++ type, size, data type class, includes); the wire sizes are the
+# ROS ones whatever the size says, the C++ type is taken from the mapping.
+
+class PrimitiveDataType(object):
+    """Marker of the original's data type classes (only their identity is used here)."""
+
+
+class MessageDataType(PrimitiveDataType):
+    pass
+
+
+class AVR_Float64DataType(PrimitiveDataType):
+    pass
+
+
+class Float64DataType(PrimitiveDataType):
+    pass
+
+
+class StringDataType(PrimitiveDataType):
+    pass
+
+
+class TimeDataType(PrimitiveDataType):
+    pass
+
+
+class ArrayDataType(PrimitiveDataType):
+    pass
+
+
+def primitives_from_mapping(mapping):
+    """The original's ROS_TO_EMBEDDED_TYPES mapping -> this generator's primitives table."""
+    prim = dict(PRIMITIVES_GENERIC)
+    for ros_type, entry in mapping.items():
+        if ros_type not in prim:
+            continue                      # 'Header' and other message types: generated as such
+        cpp, cls = entry[0], entry[2]
+        if ros_type == 'float64':
+            if cls is AVR_Float64DataType or cpp == 'float':
+                prim[ros_type] = ('float', 8, 'avrfloat64')
+            else:
+                prim[ros_type] = (cpp, 8, 'float64')
+        elif ros_type == 'string':
+            prim[ros_type] = ('const char*', None, 'string')
+        else:
+            _, size, kind = prim[ros_type]
+            prim[ros_type] = (cpp, size, kind)
+    return prim
+
+
+def rosserial_client_copy_files(rospack, path):
+    """Copy rosserial_client's own ros_lib sources (ros/*.h, time.cpp, duration.cpp, tf/*)
+    into path, creating it."""
+    src = core_dir()
+    for root, _, files in os.walk(src):
+        rel = os.path.relpath(root, src)
+        os.makedirs(os.path.join(path, rel), exist_ok=True)
+        for fn in files:
+            shutil.copy(os.path.join(root, fn), os.path.join(path, rel, fn))
+
+
+def rosserial_generate(rospack, path, mapping):
+    """One header per message and service of every package `rospack` sees, into path;
+    returns the types that could not be generated (printed as the original does)."""
+    packages = {}
+    for name in rospack.list():
+        p = rospack.get_path(name)
+        if os.path.isdir(os.path.join(p, 'msg')) or os.path.isdir(os.path.join(p, 'srv')):
+            packages[name] = p
+    failed = Generator(packages, primitives_from_mapping(mapping)).generate(path, print)
+    if failed:
+        print('*** Warning, failed to generate libraries for the following packages: ***')
+        for f in sorted(set(x.split('/')[0] for x in failed)):
+            print('    %s' % f)
+    return failed
