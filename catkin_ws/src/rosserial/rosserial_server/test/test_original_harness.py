@@ -64,3 +64,19 @@ def test_serial_node(roscore, harness, tmp_path):
     link = str(tmp_path / 'rosserial_pty')
     run(roscore, harness, tmp_path, 'serial.launch', ['port:=%s' % link],
         ['_mode:=serial', '_port:=%s' % link])
+
+
+def test_rosserial_python_tcp_mode(roscore, harness, tmp_path):
+    """The same client against rosserial_python's serial_node.py in tcp mode."""
+    port = free_port()
+    for k, v in PARAMS:
+        subprocess.run(['rosparam', 'set', k, v], env=roscore.env, check=True, timeout=60)
+    node = Proc(['rosrun', 'rosserial_python', 'serial_node.py', 'tcp', str(port)],
+                env=roscore.env, log=str(tmp_path / 'node.log'))
+    try:
+        p = subprocess.run([harness, '_mode:=socket', '_tcp_port:=%d' % port], env=roscore.env,
+                           capture_output=True, text=True, timeout=300)
+        assert p.returncode == 0 and '[  PASSED  ] 3 tests.' in p.stdout, \
+            p.stdout[-3000:] + '\nserial_node.py:\n' + node.output()[-3000:]
+    finally:
+        node.stop()
