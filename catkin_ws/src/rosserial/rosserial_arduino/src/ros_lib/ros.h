@@ -3,7 +3,11 @@
 #define _ROS_H_
 
 #include "ros/node_handle.h"
+#if defined(ESP8266) || defined(ESP32) || defined(ROSSERIAL_ARDUINO_TCP)
+#include "ArduinoTcpHardware.h"   // Wi-Fi boards / Ethernet shields: rosserial over TCP
+#else
 #include "ArduinoHardware.h"
+#endif
 
 namespace ros
 {

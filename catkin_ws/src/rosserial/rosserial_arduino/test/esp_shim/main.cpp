@@ -1,0 +1,10 @@
+// Host shim: the Arduino core's main loop.
+void setup();
+void loop();
+
+int main()
+{
+  setup();
+  for (;;)
+    loop();
+}
