@@ -1,6 +1,7 @@
-"""MoveBase: the move_base action server (the original's state machine: PLANNING,
-CONTROLLING, CLEARING; a planner thread; recovery behaviours)."""
-import math
+"""MoveBase: the move_base action server. The state machine (PLANNING, CONTROLLING,
+CLEARING), oscillation detection and the recovery sequence are in ``core``; this node reads
+the parameters, loads the planners and recovery behaviours, runs the planner thread and the
+control loop and talks ROS (action server, topics, services, tf)."""
 import sys
 import threading
 
@@ -8,7 +9,7 @@ import actionlib
 import rospy
 import tf2_ros
 from geometry_msgs.msg import PoseStamped, Twist
-from move_base_msgs.msg import (MoveBaseAction, MoveBaseFeedback, MoveBaseGoal,
+from move_base_msgs.msg import (MoveBaseAction, MoveBaseFeedback,
                                 MoveBaseResult, RecoveryStatus)
 from nav_msgs.srv import GetPlan, GetPlanResponse
 from std_srvs.srv import Empty, EmptyResponse
@@ -18,9 +19,7 @@ from costmap_2d.costmap_2d_ros import Costmap2DROS
 from costmap_2d.params import CostmapParamError
 
 from . import conversions as conv
-
-PLANNING, CONTROLLING, CLEARING = 'PLANNING', 'CONTROLLING', 'CLEARING'
-PLANNING_R, CONTROLLING_R, OSCILLATION_R = 'PLANNING_R', 'CONTROLLING_R', 'OSCILLATION_R'
+from . import core
 
 
 class MoveBase:
@@ -31,16 +30,17 @@ class MoveBase:
                                         'base_local_planner/TrajectoryPlannerROS'))
         self.robot_base_frame = str(P('global_costmap/robot_base_frame', 'base_link'))
         self.global_frame = str(P('global_costmap/global_frame', 'map'))
-        self.planner_frequency = float(P('planner_frequency', 0.0))
+        self.config = core.Config(
+            planner_frequency=float(P('planner_frequency', 0.0)),
+            planner_patience=float(P('planner_patience', 5.0)),
+            controller_patience=float(P('controller_patience', 15.0)),
+            max_planning_retries=int(P('max_planning_retries', -1)),
+            oscillation_timeout=float(P('oscillation_timeout', 0.0)),
+            oscillation_distance=float(P('oscillation_distance', 0.5)),
+            recovery_behavior_enabled=bool(P('recovery_behavior_enabled', True)))
         self.controller_frequency = float(P('controller_frequency', 20.0))
-        self.planner_patience = float(P('planner_patience', 5.0))
-        self.controller_patience = float(P('controller_patience', 15.0))
-        self.max_planning_retries = int(P('max_planning_retries', -1))
-        self.oscillation_timeout = float(P('oscillation_timeout', 0.0))
-        self.oscillation_distance = float(P('oscillation_distance', 0.5))
         self.conservative_reset_dist = float(P('conservative_reset_dist', 3.0))
         self.clearing_rotation_allowed = bool(P('clearing_rotation_allowed', True))
-        self.recovery_behavior_enabled = bool(P('recovery_behavior_enabled', True))
         self.shutdown_costmaps = bool(P('shutdown_costmaps', False))
         self.make_plan_clear_costmap = bool(P('make_plan_clear_costmap', True))
         self.make_plan_add_unreachable_goal = bool(P('make_plan_add_unreachable_goal', True))
@@ -77,21 +77,9 @@ class MoveBase:
                            .split('/')[-1], self.tf_buffer, self.controller_costmap)
         self.recovery_behaviors = self._load_recovery_behaviors()
 
-        self.lock = threading.RLock()
-        self.planner_cond = threading.Condition(self.lock)
-        self.run_planner = False
-        self.planner_goal = None
-        self.planner_plan = None
-        self.latest_plan = None
-        self.new_global_plan = False
-        self.state = PLANNING
-        self.recovery_trigger = PLANNING_R
-        self.recovery_index = 0
-        self.planning_retries = 0
-        self.last_valid_plan = rospy.Time.now()
-        self.last_valid_control = rospy.Time.now()
-        self.last_oscillation_reset = rospy.Time.now()
-        self.oscillation_pose = None
+        self._cycle_pose = None     # the robot's pose in the current control cycle
+        self.core = core.MoveBaseCore(self.config, self.tc, self.recovery_behaviors,
+                                      _RosOutputs(self), lambda: rospy.Time.now().to_sec())
         self.cycle_times = []   # (sim start, wall duration) of control cycles, for the bench
 
         self.plan_thread = threading.Thread(target=self._plan_thread, name='move_base_plan',
@@ -211,50 +199,23 @@ class MoveBase:
         return self.planner.make_plan(start, goal, tolerance)
 
     def reset_state(self):
-        with self.lock:
-            self.run_planner = False
-            self.state = PLANNING
-            self.recovery_index = 0
-            self.recovery_trigger = PLANNING_R
-        self.publish_zero_velocity()
+        self.core.reset()
 
     # ---- the planner thread ----------------------------------------------------------------
     def _plan_thread(self):
-        wait_for_wake = False
+        mb = self.core
         while not rospy.is_shutdown():
-            with self.lock:
-                while (wait_for_wake or not self.run_planner) and not rospy.is_shutdown():
-                    self.planner_cond.wait(0.2)
-                    wait_for_wake = False
-                    if self.run_planner:
-                        break
+            with mb.lock:
+                while not mb.run_planner and not rospy.is_shutdown():
+                    mb.planner_cond.wait(0.2)
                 if rospy.is_shutdown():
                     return
-                goal = self.planner_goal
+                goal = mb.planner_goal
                 start_time = rospy.Time.now()
             plan = self.make_plan(goal) if goal is not None else []
-            with self.lock:
-                if plan:
-                    self.latest_plan = plan
-                    self.last_valid_plan = rospy.Time.now()
-                    self.planning_retries = 0
-                    self.new_global_plan = True
-                    if self.run_planner:
-                        self.state = CONTROLLING
-                    if self.planner_frequency <= 0:
-                        self.run_planner = False
-                elif self.state == PLANNING:
-                    attempt_end = self.last_valid_plan + rospy.Duration(self.planner_patience)
-                    self.planning_retries += 1
-                    retries_exceeded = (self.max_planning_retries >= 0 and
-                                        self.planning_retries > self.max_planning_retries)
-                    if self.run_planner and (rospy.Time.now() > attempt_end or retries_exceeded):
-                        self.state = CLEARING
-                        self.run_planner = False
-                        self.publish_zero_velocity()
-                        self.recovery_trigger = PLANNING_R
-            if self.planner_frequency > 0:
-                end = start_time + rospy.Duration(1.0 / self.planner_frequency)
+            mb.plan_done(plan)
+            if self.config.planner_frequency > 0:
+                end = start_time + rospy.Duration(1.0 / self.config.planner_frequency)
                 while rospy.Time.now() < end and not rospy.is_shutdown():
                     rospy.sleep(0.02)
             elif not plan:
@@ -264,18 +225,7 @@ class MoveBase:
     # ---- the action ------------------------------------------------------------------------
     def _start_goal(self, goal):
         goal = self._goal_to_global_frame(goal)
-        with self.lock:
-            self.planner_goal = goal
-            self.run_planner = True
-            self.state = PLANNING
-            self.recovery_index = 0
-            self.recovery_trigger = PLANNING_R
-            self.planning_retries = 0
-            now = rospy.Time.now()
-            self.last_valid_control = now
-            self.last_valid_plan = now
-            self.last_oscillation_reset = now
-            self.planner_cond.notify_all()
+        self.core.start_goal(goal)
         self.current_goal_pub.publish(goal)
         return goal
 
@@ -330,114 +280,18 @@ class MoveBase:
 
     def _execute_cycle(self, goal):
         pose = self._robot_pose_stamped(self.planner_costmap)
+        position = None
         if pose is not None:
             self.server.publish_feedback(MoveBaseFeedback(base_position=pose))
-            now = rospy.Time.now()
-            if self.oscillation_pose is None or conv.distance(pose, self.oscillation_pose) >= \
-                    self.oscillation_distance:
-                self.last_oscillation_reset = now
-                self.oscillation_pose = pose
-                if self.recovery_trigger == OSCILLATION_R:
-                    self.recovery_index = 0
-        if not self.controller_costmap.is_current():
-            rospy.logwarn_throttle(1.0, '[%s]:Sensor data is out of date, we\'re not going to '
-                                   'allow commanding of the base for safety'
-                                   % rospy.get_name())
-            self.publish_zero_velocity()
+            position = (pose.pose.position.x, pose.pose.position.y)
+        self._cycle_pose = pose
+        result = self.core.cycle(position, self.controller_costmap.is_current())
+        if result is None:
             return False
-        with self.lock:
-            if self.new_global_plan:
-                self.new_global_plan = False
-                plan = self.latest_plan
-                if not self.tc.set_plan(plan):
-                    rospy.logerr('Failed to pass global plan to the controller, aborting.')
-                    self.reset_state()
-                    self.server.set_aborted(MoveBaseResult(), 'Failed to pass global plan to '
-                                            'the controller.')
-                    return True
-                if self.recovery_trigger == PLANNING_R:
-                    self.recovery_index = 0
-            state = self.state
-        if state == PLANNING:
-            with self.lock:
-                self.run_planner = True
-                self.planner_cond.notify_all()
-            return False
-        if state == CONTROLLING:
-            if self.tc.is_goal_reached():
-                rospy.logdebug('Goal reached!')
-                self.reset_state()
-                self.server.set_succeeded(MoveBaseResult(), 'Goal reached.')
-                return True
-            now = rospy.Time.now()
-            if self.oscillation_timeout > 0 and self.last_oscillation_reset + \
-                    rospy.Duration(self.oscillation_timeout) < now:
-                self.publish_zero_velocity()
-                with self.lock:
-                    self.state = CLEARING
-                    self.recovery_trigger = OSCILLATION_R
-                return False
-            cmd = self.tc.compute_velocity_commands()
-            if cmd is not None:
-                self.last_valid_control = rospy.Time.now()
-                self.vel_pub.publish(cmd)
-                if self.recovery_trigger == CONTROLLING_R:
-                    self.recovery_index = 0
-            else:
-                rospy.logdebug('The local planner could not find a valid plan.')
-                attempt_end = self.last_valid_control + rospy.Duration(self.controller_patience)
-                with self.lock:
-                    if rospy.Time.now() > attempt_end:
-                        self.publish_zero_velocity()
-                        self.state = CLEARING
-                        self.recovery_trigger = CONTROLLING_R
-                    else:
-                        self.last_valid_plan = rospy.Time.now()
-                        self.planning_retries = 0
-                        self.state = PLANNING
-                        self.publish_zero_velocity()
-                        self.run_planner = True
-                        self.planner_cond.notify_all()
-            return False
-        # CLEARING
-        if self.recovery_behavior_enabled and self.recovery_index < len(self.recovery_behaviors):
-            b = self.recovery_behaviors[self.recovery_index]
-            rospy.logdebug('Executing behavior %u of %u' % (self.recovery_index + 1,
-                                                             len(self.recovery_behaviors)))
-            st = RecoveryStatus()
-            if pose is not None:
-                st.pose_stamped = pose
-            st.current_recovery_number = self.recovery_index
-            st.total_number_of_recoveries = len(self.recovery_behaviors)
-            st.recovery_behavior_name = b.behavior_name
-            self.recovery_status_pub.publish(st)
-            b.run_behavior()
-            with self.lock:
-                self.last_oscillation_reset = rospy.Time.now()
-                self.state = PLANNING
-                self.run_planner = True
-                self.planning_retries = 0
-                self.recovery_index += 1
-                self.planner_cond.notify_all()
-            return False
-        rospy.logdebug('All recovery behaviors have failed, locking the planner and disabling it.')
-        with self.lock:
-            self.run_planner = False
-            trigger = self.recovery_trigger
-        if trigger == CONTROLLING_R:
-            rospy.logerr('Aborting because a valid control could not be found. Even after '
-                         'executing all recovery behaviors')
-            text = 'Failed to find a valid control. Even after executing recovery behaviors.'
-        elif trigger == PLANNING_R:
-            rospy.logerr('Aborting because a valid plan could not be found. Even after '
-                         'executing all recovery behaviors')
-            text = 'Failed to find a valid plan. Even after executing recovery behaviors.'
+        if result.status == core.SUCCEEDED:
+            self.server.set_succeeded(MoveBaseResult(), result.text)
         else:
-            rospy.logerr('Aborting because the robot appears to be oscillating over and over. '
-                         'Even after executing all recovery behaviors')
-            text = 'Robot is oscillating. Even after executing recovery behaviors.'
-        self.reset_state()
-        self.server.set_aborted(MoveBaseResult(), text)
+            self.server.set_aborted(MoveBaseResult(), result.text)
         return True
 
     # ---- services --------------------------------------------------------------------------
@@ -472,6 +326,37 @@ class MoveBase:
         self.planner_costmap.reset_layers()
         self.controller_costmap.reset_layers()
         return EmptyResponse()
+
+
+class _RosOutputs(core.Outputs):
+    """The core's outputs as the original sends them: cmd_vel, ~recovery_status, rosout."""
+
+    def __init__(self, node):
+        self.node = node
+
+    def zero_velocity(self):
+        self.node.publish_zero_velocity()
+
+    def command(self, cmd):
+        self.node.vel_pub.publish(cmd)
+
+    def recovery_status(self, number, total, name):
+        st = RecoveryStatus()
+        if self.node._cycle_pose is not None:
+            st.pose_stamped = self.node._cycle_pose
+        st.current_recovery_number = number
+        st.total_number_of_recoveries = total
+        st.recovery_behavior_name = name
+        self.node.recovery_status_pub.publish(st)
+
+    def debug(self, msg):
+        rospy.logdebug(msg)
+
+    def error(self, msg):
+        rospy.logerr(msg)
+
+    def warn_throttle(self, period, msg):
+        rospy.logwarn_throttle(period, '[%s]:%s' % (rospy.get_name(), msg))
 
 
 def _wall():
