@@ -160,3 +160,78 @@ def test_serial_node_reopens_the_port_for_each_new_device(core, host_client, tmp
         assert server.alive()
     finally:
         server.stop()
+
+
+class PtyTcpRelay(object):
+    """The emulated board's UART carried over TCP, as a serial-to-Wi-Fi bridge (ESP-Link and the
+    like) would: bytes from the pty go to the TCP server and back."""
+
+    def __init__(self, pty, port):
+        import socket
+        import termios
+        import threading
+        import tty
+        self.fd = os.open(pty, os.O_RDWR | os.O_NOCTTY)
+        tty.setraw(self.fd, termios.TCSANOW)
+        self.sock = socket.create_connection(('127.0.0.1', port), timeout=30)
+        self.sock.setblocking(True)
+        self.stop_flag = False
+        self.threads = [threading.Thread(target=self._up, daemon=True),
+                        threading.Thread(target=self._down, daemon=True)]
+        for t in self.threads:
+            t.start()
+
+    def _up(self):
+        import select
+        while not self.stop_flag:
+            r, _, _ = select.select([self.fd], [], [], 0.1)
+            if r:
+                try:
+                    data = os.read(self.fd, 4096)
+                    self.sock.sendall(data)
+                except OSError:
+                    return
+
+    def _down(self):
+        self.sock.settimeout(0.1)
+        import socket
+        while not self.stop_flag:
+            try:
+                data = self.sock.recv(4096)
+            except socket.timeout:
+                continue
+            except OSError:
+                return
+            if not data:
+                return
+            os.write(self.fd, data)
+
+    def close(self):
+        self.stop_flag = True
+        for t in self.threads:
+            t.join(2)
+        self.sock.close()
+        os.close(self.fd)
+
+
+def test_socket_node_with_a_sketch_in_the_simulator_over_tcp(core, tmp_path):
+    sys.path.insert(0, os.path.join(REPO, 'firmware', 'hil'))
+    import harness
+    port = free_port()
+    server = Proc(['roslaunch', 'rosserial_server', 'socket.launch', 'port:=%d' % port],
+                  env=core.env, log=str(tmp_path / 'server.log'))
+    sim = harness.Simulation(harness.build('hello_world'))
+    relay = None
+    try:
+        wait_for(lambda: 'Listening on port %d' % port in server.output(), 90,
+                 what='socket_node listening')
+        relay = PtyTcpRelay(sim.pty, port)
+        wait_for(lambda: 'Setup publisher on chatter [std_msgs/String]' in server.output(), 90,
+                 what='the Mega negotiating over TCP')
+        assert 'data: "hello world!"' in echo(core, '/chatter')
+        assert server.alive()
+    finally:
+        if relay is not None:
+            relay.close()
+        server.stop()
+        sim.stop()
