@@ -155,6 +155,9 @@ class SimJoint:
         self.name = desc.name
         self.desc = desc
         self.type = desc.type
+        # plain attributes, not properties: read several times per joint and step
+        self.hinge = self.type in ('revolute', 'continuous')
+        self.slider = self.type == 'prismatic'
         self.joint = joint
         self.parent = parent            # SimLink or None (world)
         self.child = child
@@ -166,14 +169,6 @@ class SimJoint:
         self.world_ref = model.world
         self.limit_effort = desc.effort if desc.effort and desc.effort > 0 else None
         self.limit_velocity = desc.velocity if desc.velocity and desc.velocity > 0 else None
-
-    @property
-    def hinge(self):
-        return self.type in ('revolute', 'continuous')
-
-    @property
-    def slider(self):
-        return self.type == 'prismatic'
 
     def position(self):
         if self.hinge:

@@ -120,6 +120,7 @@ class CompiledLoop:
         self.pw = pw
         self.core = _core.Stepper(ptr(pw.world), ptr(pw.static_space))
         self._geoms = {}            # ODE id -> geom (contact records name geoms by id)
+        self._space_ids = {}        # see add_space
         self.joints_dirty = True
         self.tracked_dirty = True
         self.sync_step()
@@ -149,12 +150,17 @@ class CompiledLoop:
 
     def add_space(self, space, bodies, self_collide):
         self.core.add_space(ptr(space), [ptr(b) for b in bodies], bool(self_collide))
+        # the id of each model space, for rouse() (every commanded joint wakes its model
+        # every step): id(space) -> (space, ODE id); the space is kept so its id is not reused
+        self._space_ids[id(space)] = (space, ptr(space))
 
     def remove_space(self, space):
+        self._space_ids.pop(id(space), None)
         self.core.remove_space(ptr(space))
 
     def rouse(self, space):
-        self.core.rouse(ptr(space))
+        e = self._space_ids.get(id(space))
+        self.core.rouse(e[1] if e is not None and e[0] is space else ptr(space))
 
     def awake(self, space):
         return self.core.awake(ptr(space))

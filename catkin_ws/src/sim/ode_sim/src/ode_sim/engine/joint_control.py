@@ -78,8 +78,11 @@ class BridgeJoint:
     def position(self):
         """The joint position, hinge angles unwrapped (as DefaultRobotHWSim::readSim); call
         at least once per step so that no turn is missed."""
-        raw = self.joint.position()
-        if not self.wraps or self._pos is None:
+        if not self.wraps:
+            self._pos = self.joint.position()
+            return self._pos
+        raw = self.joint.joint.getAngle()       # a hinge: SimJoint.position() without the test
+        if self._pos is None:
             self._pos = raw
         else:
             self._pos += shortest_angular_distance(self._pos, raw)
