@@ -34,6 +34,7 @@ class Counts:
     def summary(self):
         out = {'sensors': {}, 'clock': self.clock, 'tf': self.tf}
         for k, v in self.stamps.items():
+            v = list(v)         # a snapshot: callbacks may still be appending
             out['sensors'][k] = {'received': len(v), 'first': min(v) * 1e-9 if v else 0.0,
                                  'last': max(v) * 1e-9 if v else 0.0, 'distinct': len(set(v))}
         return out
@@ -78,7 +79,10 @@ def main(argv):
         if last[0] < 0 or t - last[0] >= DRIVE_PERIOD or t < last[0]:
             last[0] = t
             for p in pubs:
-                p.publish(make(t))
+                try:
+                    p.publish(make(t))
+                except rospy.ROSException:      # shutting down
+                    return
     rospy.Subscriber('/clock', Clock, on_clock, queue_size=1)
 
     done = []
