@@ -4,7 +4,7 @@ the configured controllers as uninitialized, runs the context menu's 'Load and S
 'Stop and Unload' on velocity_j2, and reports the table after each."""
 import sys
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 st = {'phase': 0}
 STEPS = [('Load and Start', ['load', 'start'], 'running'), ('Stop', ['stop'], 'stopped'),

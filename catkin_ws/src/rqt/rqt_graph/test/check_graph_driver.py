@@ -4,7 +4,7 @@ prints the graph model (nodes only, then nodes/topics) and where the items are o
 waits for the test's screenshot (flag file argv[1])."""
 import sys
 
-from rqt_gui.testing import emit, file_exists, run, running_instance
+from course_testing.rqt_driver import emit, file_exists, run, running_instance
 
 flag = sys.argv.pop(1)
 phase = {'n': 0}

@@ -9,7 +9,7 @@ reload: started with --perspective-file; prints what came back.
 """
 import sys
 
-from rqt_gui.testing import emit, file_exists, run, running_instance, widget_rect
+from course_testing.rqt_driver import emit, file_exists, run, running_instance, widget_rect
 
 mode = sys.argv.pop(1)
 flag = perspective = None

@@ -3,7 +3,7 @@
 the mean colour of the last image, then waits for the test's screenshot (flag file argv[1])."""
 import sys
 
-from rqt_gui.testing import emit, file_exists, run, running_instance, widget_rect
+from course_testing.rqt_driver import emit, file_exists, run, running_instance, widget_rect
 
 flag = sys.argv.pop(1)
 st = {}

@@ -8,7 +8,7 @@ import sys
 import numpy as np
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
-from rqt_gui.testing import gui_env, states
+from course_testing.rqt_driver import gui_env, states
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 

@@ -5,7 +5,7 @@ enabled through its checkbox until the test creates the stop file (argv[2]), the
 import os
 import sys
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 TOPIC, STOP = sys.argv[1], sys.argv[2]
 st = {}

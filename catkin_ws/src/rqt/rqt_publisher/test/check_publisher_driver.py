@@ -4,7 +4,7 @@ linear/x = 1.0 and angular/z = 0.5, enabled for 2 s through its checkbox, then d
 import sys
 import time
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 st = {}
 

@@ -6,7 +6,7 @@ import sys
 
 from course_testing import Proc, wait_for
 from course_testing.sim_testing import probe
-from rqt_gui.testing import gui_env, states
+from course_testing.rqt_driver import gui_env, states
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 COMMAND = '/diffrobot/joint1_position_controller/command'

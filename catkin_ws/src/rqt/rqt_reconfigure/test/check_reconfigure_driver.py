@@ -4,7 +4,7 @@ bad value, and prints the server's configuration as the plugin's client sees it.
 import sys
 import time
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 st = {}
 

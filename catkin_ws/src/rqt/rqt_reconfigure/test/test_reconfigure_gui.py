@@ -4,7 +4,7 @@ import sys
 
 import pytest
 from course_testing import Proc, wait_for
-from rqt_gui.testing import gui_env, states
+from course_testing.rqt_driver import gui_env, states
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 

@@ -4,7 +4,7 @@ Stop; prints the widget state."""
 import sys
 import time
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 st = {}
 

@@ -5,7 +5,7 @@ unknown type, the talker's log lines in the Console and the severity exclude fil
 import sys
 import time
 
-from rqt_gui.testing import emit, run, running_instance
+from course_testing.rqt_driver import emit, run, running_instance
 
 st = {'phase': 0}
 

@@ -89,4 +89,4 @@ def dark_fraction(rgb, rect, level=120):
 
 
 if __name__ == '__main__':
-    sys.exit('import rqt_gui.testing from a test script')
+    sys.exit('import course_testing.rqt_driver from a test script')
