@@ -8,6 +8,7 @@
 
 #include <joint_trajectory_controller/init_joint_trajectory.h>
 #include <joint_trajectory_controller/tolerances.h>
+#include <trajectory_interface/pos_vel_acc_eff_state.h>
 #include <trajectory_interface/quintic_spline_segment.h>
 
 using namespace joint_trajectory_controller;
@@ -114,6 +115,17 @@ TEST(TolerancesTest, ZeroIsNotEnforcedNegativeDisables)
   EXPECT_FALSE(checkStateTolerancePerJoint(err, tol));
   tol = StateTolerances<double>();
   EXPECT_TRUE(checkStateTolerancePerJoint(err, tol));
+
+  // Per joint, over a state of several joints (as the original's PosVelAccEffState).
+  trajectory_interface::PosVelAccEffState<double> errs(2);
+  errs.position = { 0.01, -0.3 };
+  std::vector<StateTolerances<double>> per_joint(2, StateTolerances<double>(0.1));
+  EXPECT_FALSE(checkStateTolerance(errs, per_joint));
+  per_joint[1].position = 0.5;
+  EXPECT_TRUE(checkStateTolerance(errs, per_joint));
+  per_joint[1].position = -1.0;  // not positive: not enforced
+  errs.position[1] = 10.0;
+  EXPECT_TRUE(checkStateTolerance(errs, per_joint));
 
   SegmentTolerances<double> tols(2);
   tols.state_tolerance[0].position = 0.05;

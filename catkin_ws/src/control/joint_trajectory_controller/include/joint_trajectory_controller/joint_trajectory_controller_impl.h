@@ -241,13 +241,13 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
     const SegmentTolerancesPerJoint<Scalar>& tols = segment.getTolerances();
     if (now < segment.endTime())
     {
-      if (!checkStateTolerancePerJoint(state_error_, tols.state_tolerance, i))
+      if (!checkStateToleranceAt(state_error_, tols.state_tolerance, i))
         goal->requestAborted(control_msgs::FollowJointTrajectoryResult::PATH_TOLERANCE_VIOLATED,
                              "Path tolerance violated.");
     }
     else if (seg_idx + 1 == joint_traj.size())
     {
-      if (checkStateTolerancePerJoint(state_error_, tols.goal_state_tolerance, i))
+      if (checkStateToleranceAt(state_error_, tols.goal_state_tolerance, i))
         goal->successful()[i] = 1;
       else if (!goal->successful()[i] && now > segment.endTime() + tols.goal_time_tolerance)
         goal->requestAborted(control_msgs::FollowJointTrajectoryResult::GOAL_TOLERANCE_VIOLATED,

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <control_msgs/FollowJointTrajectoryGoal.h>
+#include <ros/console.h>
 #include <ros/node_handle.h>
 
 namespace joint_trajectory_controller
@@ -50,13 +51,14 @@ struct SegmentTolerances
   Scalar goal_time_tolerance;
 };
 
-/// True if every error of \p state_error at \p index is within the (enforced) tolerances.
+/// True if the errors of \p state_error at \p index are within the (enforced, i.e. positive) tolerances.
 template <class State>
-inline bool checkStateTolerancePerJoint(const State& state_error, const StateTolerances<typename State::Scalar>& tol,
-                                        unsigned int index = 0)
+inline bool checkStateToleranceAt(const State& state_error, const StateTolerances<typename State::Scalar>& tol,
+                                  unsigned int index)
 {
   using std::abs;
-  const bool pos_ok = !(tol.position > 0.0) || abs(state_error.position[index]) <= tol.position;
+  const bool pos_ok = !(tol.position > 0.0) || state_error.position.size() <= index ||
+                      abs(state_error.position[index]) <= tol.position;
   const bool vel_ok = !(tol.velocity > 0.0) || state_error.velocity.size() <= index ||
                       abs(state_error.velocity[index]) <= tol.velocity;
   const bool acc_ok = !(tol.acceleration > 0.0) || state_error.acceleration.size() <= index ||
@@ -64,14 +66,33 @@ inline bool checkStateTolerancePerJoint(const State& state_error, const StateTol
   return pos_ok && vel_ok && acc_ok;
 }
 
+/// True if the error of a one-joint state is within \p tol (\p show_errors: log the violation).
+template <class State>
+inline bool checkStateTolerancePerJoint(const State& state_error, const StateTolerances<typename State::Scalar>& tol,
+                                        bool show_errors = false)
+{
+  const bool ok = checkStateToleranceAt(state_error, tol, 0);
+  if (!ok && show_errors)
+    ROS_ERROR_STREAM("Path state tolerances failed: position error " << state_error.position[0] << " (tolerance "
+                                                                     << tol.position << ")");
+  return ok;
+}
+
 /// True if every joint of \p state_error is within its tolerances.
 template <class State>
 inline bool checkStateTolerance(const State& state_error,
-                                const std::vector<StateTolerances<typename State::Scalar>>& tols)
+                                const std::vector<StateTolerances<typename State::Scalar>>& tols,
+                                bool show_errors = false)
 {
   for (unsigned int i = 0; i < tols.size(); ++i)
-    if (!checkStateTolerancePerJoint(state_error, tols[i], i))
+  {
+    if (!checkStateToleranceAt(state_error, tols[i], i))
+    {
+      if (show_errors)
+        ROS_ERROR_STREAM("State tolerances failed for joint " << i << ".");
       return false;
+    }
+  }
   return true;
 }
 
