@@ -101,7 +101,7 @@ put_file() {  # put_file PATH CONTENT: write only when it differs (idempotent)
     printf '%s\n' "$2" | $SUDO tee "$1" >/dev/null
     log "wrote $1"
 }
-[ -d "$ROSDEP_LISTS" ] || die "$ROSDEP_LISTS missing: python3-rosdep2 is not installed (deps/debian.txt)"
+command -v rosdep >/dev/null || die "no rosdep: python3-rosdep2 (deps/debian.txt) is not installed"
 if [ -f "$ROSDEP_LISTS/20-default.list" ] && grep -q '^[^#]*https\?://' "$ROSDEP_LISTS/20-default.list" \
         && [ ! -f "$ROSDEP_LISTS/20-default.list.debian" ]; then
     $SUDO cp "$ROSDEP_LISTS/20-default.list" "$ROSDEP_LISTS/20-default.list.debian"
