@@ -95,6 +95,7 @@ class SimNode(StepLoop):
         self.clock_period = 1.0 / freq if freq > 0 else 0.0
         self._last_clock = -1.0
         self._last_clock_wall = 0.0
+        self._own_clock = self._stop_clock_subscription()
         self._stop = threading.Event()
         self._resync = True
         for m in world.models:
@@ -156,9 +157,25 @@ class SimNode(StepLoop):
             self.publish_clock(force=True)
 
     # ----------------------------------------------------------------- loop
+    @staticmethod
+    def _stop_clock_subscription():
+        """With /use_sim_time, rospy.init_node subscribed this process to /clock: the node
+        would receive (a sender and a receiver thread, deserialisation under the GIL) every
+        /clock message it publishes. Gazebo does not listen to its own clock; here the
+        subscription is dropped and publish_clock() sets rospy's time directly, at the same
+        moments (True then)."""
+        from rospy.impl import simtime
+        sub = getattr(simtime, '_clock_sub', None)
+        if sub is None:
+            return False
+        sub.unregister()
+        simtime._clock_sub = None
+        return True
+
     def publish_clock(self, force=False):
         t = self.physics.time
-        if not force and self.clock_pub.get_num_connections() == 0:
+        listened = self.clock_pub.get_num_connections() > 0
+        if not force and not listened and not self._own_clock:
             return                      # nobody listens: no serialisation, no GIL hand-off
         if not force:
             if self.clock_period > 0:
@@ -171,7 +188,11 @@ class SimNode(StepLoop):
                     return
                 self._last_clock_wall = now
         self._last_clock = t
-        self.clock_pub.publish(Clock(clock=rospy.Time.from_sec(t)))
+        stamp = rospy.Time.from_sec(t)
+        if self._own_clock:             # what the node's own /clock subscription did
+            rospy.rostime._set_rostime(stamp)
+        if force or listened:
+            self.clock_pub.publish(Clock(clock=stamp))
 
     def spin(self):
         """Run until rospy shuts down: step, pace, publish."""
