@@ -10,6 +10,8 @@ import rospy
 from gazebo_msgs.msg import ModelStates
 from geometry_msgs.msg import Twist
 
+from course_runtime.geometry import yaw_of
+
 WAYPOINTS = [(1.0, 0.0), (1.0, -1.6), (-1.0, -1.6), (-1.0, 0.9), (0.8, 0.9), (0.0, 0.0)]
 DRIVE_LIMIT = 120.0
 truth = None
@@ -20,7 +22,7 @@ def on_states(msg):
     if 'robot' in msg.name:
         p = msg.pose[msg.name.index('robot')]
         q = p.orientation
-        truth = (p.position.x, p.position.y, math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y ** 2 + q.z ** 2)))
+        truth = (p.position.x, p.position.y, yaw_of(q))
 
 
 def main():

@@ -12,6 +12,8 @@ import rospy
 from gazebo_msgs.msg import ModelStates
 from geometry_msgs.msg import PoseStamped, Twist
 
+from course_runtime.geometry import yaw_of
+
 # room B -> A -> B -> C -> B -> corridor -> store room D -> corridor -> B (doors: x=-2 / x=2 at
 # y=-1.5, y=2 at x=-4, 0, 2.8; store room door x=3.5 at y=3)
 ROUTE = [(0.0, -1.5), (-1.2, -1.5), (-3.0, -1.5), (-4.0, -0.8), (-4.0, 0.8), (-3.0, 0.2), (-3.0, -1.5),
@@ -20,10 +22,6 @@ ROUTE = [(0.0, -1.5), (-1.2, -1.5), (-3.0, -1.5), (-4.0, -0.8), (-4.0, 0.8), (-3
          (4.6, 3.0), (2.8, 3.0), (0.0, 3.0), (0.0, 1.0), (0.0, 0.0)]
 SPEED = 0.25        # m/s
 TURN = 0.8          # rad/s max
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def main():

@@ -19,6 +19,8 @@ from geometry_msgs.msg import PoseArray, PoseWithCovarianceStamped, Twist
 from nav_msgs.msg import OccupancyGrid
 from std_srvs.srv import Empty
 
+from course_runtime.geometry import yaw_of
+
 WALL_TIMEOUT = 150.0
 CONVERGE_S = 4.0          # s of sim time driving
 TOL_XY, TOL_YAW = 0.10, 0.10      # converged: amcl's TF against the ground truth
@@ -62,10 +64,6 @@ def load_map(yaml_path):
     msg.info.origin.orientation.w = 1.0
     msg.data = data.ravel().tolist()
     return msg
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 class AmclOfficeTest(unittest.TestCase):

@@ -1,6 +1,5 @@
 """Ground truth of the space scanner's office for map checks: the wall boxes of ode_sim's
 models/office/model.sdf (read as a file) and the furniture poses of office.world."""
-import math
 import os
 import xml.etree.ElementTree as ET
 
@@ -99,6 +98,3 @@ def office_paths():
     world = os.path.join(rp.get_path('space_scanner_simulation'), 'worlds', 'office.world')
     return sdf, world
 
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))

@@ -13,9 +13,7 @@ import tf2_ros
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import TransformStamped
 
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+from course_runtime.geometry import yaw_of
 
 
 def main():

@@ -1,20 +1,17 @@
 """The one module between ROS messages and amcl's core: OccupancyGrid -> Map, LaserScan ->
 LaserData, poses <-> messages."""
-import math
 
 import numpy as np
 from geometry_msgs.msg import Pose, PoseArray, PoseWithCovarianceStamped, Quaternion, TransformStamped
+
+from course_runtime.geometry import yaw_of, yaw_quaternion
 
 from .map import Map
 from .sensors import LaserData
 
 
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
 def quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+    return Quaternion(*yaw_quaternion(yaw))
 
 
 def _rotate(q, v):

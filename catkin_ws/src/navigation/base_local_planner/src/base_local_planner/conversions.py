@@ -6,13 +6,11 @@ import rospy
 from geometry_msgs.msg import PoseStamped, Quaternion, Twist
 from nav_msgs.msg import Path
 
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+from course_runtime.geometry import yaw_of, yaw_quaternion
 
 
 def quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
+    return Quaternion(*yaw_quaternion(yaw))
 
 
 def transform_to_xyyaw(t):

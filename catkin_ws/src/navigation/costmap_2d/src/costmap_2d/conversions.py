@@ -1,18 +1,15 @@
 """The one place where costmap_2d turns ROS messages into core data and back."""
-import math
 
 import numpy as np
 from geometry_msgs.msg import Point32, PolygonStamped
 from map_msgs.msg import OccupancyGridUpdate
 from nav_msgs.msg import OccupancyGrid
 
+from course_runtime.geometry import yaw_of  # noqa: F401 (conversions.yaw_of)
+
 from .costmap import cost_translation_table
 
 _TABLE = cost_translation_table()
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def transform_to_matrix(t):

@@ -5,12 +5,9 @@ import math
 import numpy as np
 from geometry_msgs.msg import TransformStamped
 
+from course_runtime.geometry import yaw_of
 from map_server.conversions import grid_to_msg
 from map_server.grid import Grid
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 def up_z(q):

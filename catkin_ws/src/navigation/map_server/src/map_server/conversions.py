@@ -1,21 +1,12 @@
 """The one module between ROS messages and the core: Grid <-> nav_msgs/OccupancyGrid."""
-import math
-
 import numpy as np
 from geometry_msgs.msg import Quaternion
 from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap, GetMapRequest, GetMapResponse
 from rospy.numpy_msg import numpy_msg
 
+from course_runtime.geometry import yaw_of, yaw_quaternion
 from map_server.grid import Grid
-
-
-def yaw_to_quaternion(yaw):
-    return Quaternion(0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0))
-
-
-def quaternion_to_yaw(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 # int8[] maps of millions of cells: serialise them from NumPy in one copy (same md5 and wire format)
@@ -47,7 +38,7 @@ def grid_metadata(grid, stamp):
     info.resolution = grid.resolution
     info.width, info.height = grid.width, grid.height
     info.origin.position.x, info.origin.position.y = grid.origin[0], grid.origin[1]
-    info.origin.orientation = yaw_to_quaternion(grid.origin[2])
+    info.origin.orientation = Quaternion(*yaw_quaternion(grid.origin[2]))
     return info
 
 
@@ -59,5 +50,5 @@ def msg_to_grid(msg):
         arr = np.frombuffer(data, dtype=np.int8)
     else:
         arr = np.asarray(data, dtype=np.int8)
-    origin = (info.origin.position.x, info.origin.position.y, quaternion_to_yaw(info.origin.orientation))
+    origin = (info.origin.position.x, info.origin.position.y, yaw_of(info.origin.orientation))
     return Grid(info.width, info.height, info.resolution, origin, arr.copy())

@@ -5,6 +5,8 @@ import rospy
 from geometry_msgs.msg import PoseStamped, Quaternion
 from move_base_msgs.msg import MoveBaseActionGoal, MoveBaseGoal  # noqa: F401
 
+from course_runtime.geometry import yaw_of, yaw_quaternion
+
 
 def quaternion_valid(q):
     """The original's isQuaternionValid: finite, non-zero length, z axis up."""
@@ -26,17 +28,13 @@ def quaternion_valid(q):
     return True
 
 
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
-
-
 def pose_stamped(frame, x, y, yaw):
     p = PoseStamped()
     p.header.frame_id = frame
     p.header.stamp = rospy.Time.now()
     p.pose.position.x = x
     p.pose.position.y = y
-    p.pose.orientation = Quaternion(0.0, 0.0, math.sin(yaw / 2), math.cos(yaw / 2))
+    p.pose.orientation = Quaternion(*yaw_quaternion(yaw))
     return p
 
 

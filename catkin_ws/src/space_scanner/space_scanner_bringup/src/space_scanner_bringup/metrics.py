@@ -3,7 +3,6 @@
 Maps are (cells, resolution, origin) with cells[row=y, col=x] in map_server's trinary values:
 100 occupied, 0 free, -1 unknown.
 """
-import math
 
 import numpy as np
 from scipy import ndimage
@@ -79,6 +78,3 @@ def path_length(points):
         return 0.0
     return float(np.hypot(*np.diff(pts, axis=0).T).sum())
 
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))

@@ -18,10 +18,7 @@ import time
 
 import yaml
 
-
-def quat_yaw(q):
-    """Yaw (rad) of a quaternion with fields x y z w."""
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
+from course_runtime.geometry import yaw_of as quat_yaw
 
 
 def pose_dict(pose):
