@@ -126,8 +126,9 @@ class JointTrajectoryControllerTest(unittest.TestCase):
         self.assertEqual(0, len(s.actual.accelerations))
         self.assertEqual(2, len(s.error.positions))
         self.assertEqual(0, len(s.error.accelerations))
-        # A linear trajectory (positions only) queried ahead of time.
-        start = rospy.Time.now() + rospy.Duration(0.5)
+        # A linear trajectory (positions only) queried ahead of time; it starts 5 s (sim) from now,
+        # so a message delayed by a loaded machine still arrives before it.
+        start = rospy.Time.now() + rospy.Duration(5.0)
         self.command.publish(trajectory(['j1', 'j2'], [point([1.0, -1.0], 2.0)], stamp=start))
         self.wait_wall('the new trajectory', lambda: self.query(start + rospy.Duration(1.0)).position[0] > 0.1)
         resp = self.query(start + rospy.Duration(2.0))
@@ -185,13 +186,13 @@ class JointTrajectoryControllerTest(unittest.TestCase):
     def test_topic_replaces_future_part(self):
         self.command.publish(trajectory(['j1', 'j2'], [point([1.0, 1.0], 2.0)]))
         self.wait_wall('execution', lambda: self.state().desired.positions[0] > 0.05)
-        t_new = rospy.Time.now() + rospy.Duration(0.5)
+        t_new = rospy.Time.now() + rospy.Duration(1.0)  # margin for a delayed message
         before = self.query(t_new - rospy.Duration(0.1)).position[0]
-        self.command.publish(trajectory(['j1', 'j2'], [point([-0.5, 0.2], 1.0)], stamp=t_new))
-        self.wait_wall('replacement', lambda: self.query(t_new + rospy.Duration(1.0)).position[0] < -0.4)
+        self.command.publish(trajectory(['j1', 'j2'], [point([-0.5, 0.2], 1.5)], stamp=t_new))
+        self.wait_wall('replacement', lambda: self.query(t_new + rospy.Duration(1.5)).position[0] < -0.4)
         # Until the new trajectory starts, the old one is followed unchanged.
         self.assertAlmostEqual(before, self.query(t_new - rospy.Duration(0.1)).position[0], places=6)
-        rospy.sleep(2.0)
+        self.wait_wall('the end of the new trajectory', lambda: rospy.Time.now() > t_new + rospy.Duration(1.6))
         self.wait_wall('stop', self.stopped)
         s = self.state()
         self.assertAlmostEqual(-0.5, s.actual.positions[0], delta=EPS)

@@ -80,6 +80,25 @@ TEST(QuinticSplineSegmentTest, QuinticMeetsAllBoundaryConditions)
   EXPECT_NEAR(a.velocity[0], (b.position[0] - a.position[0]) / 1e-6, 1e-4);
 }
 
+TEST(QuinticSplineSegmentTest, ReproducesPolynomials)
+{
+  // x^3 - 2x on [0, 2] (time shifted by 1): a cubic from its end positions and velocities.
+  Segment cubic(1.0, state(0.0, { -2.0 }), 3.0, state(4.0, { 10.0 }));
+  State s;
+  cubic.sample(1.0 + std::sqrt(2.0), s);
+  EXPECT_NEAR(0.0, s.position[0], 1e-9);
+  EXPECT_NEAR(4.0, s.velocity[0], 1e-9);
+  EXPECT_NEAR(6.0 * std::sqrt(2.0), s.acceleration[0], 1e-9);
+  cubic.sample(3.0, s);
+  EXPECT_NEAR(12.0, s.acceleration[0], 1e-9);
+  // x(x-1)(x-2)(x-3)(x-4) on [0, 2]: a quintic from positions, velocities and accelerations.
+  Segment quintic(1.0, state(0.0, { 24.0 }, { -100.0 }), 3.0, state(0.0, { 4.0 }, { 0.0 }));
+  quintic.sample(2.0, s);
+  EXPECT_NEAR(0.0, s.position[0], 1e-9);
+  EXPECT_NEAR(-6.0, s.velocity[0], 1e-9);
+  EXPECT_NEAR(10.0, s.acceleration[0], 1e-9);
+}
+
 TEST(QuinticSplineSegmentTest, SamplingOutsideTheSegment)
 {
   Segment seg(1.0, state(0.0, { 1.0 }, { 0.0 }), 2.0, state(1.0, { 0.5 }, { 0.0 }));
@@ -87,8 +106,11 @@ TEST(QuinticSplineSegmentTest, SamplingOutsideTheSegment)
   seg.sample(0.0, s);  // before: start position, at rest
   EXPECT_DOUBLE_EQ(0.0, s.position[0]);
   EXPECT_DOUBLE_EQ(0.0, s.velocity[0]);
-  seg.sample(5.0, s);  // after: the end state
+  seg.sample(5.0, s);  // after: at rest at the end position
   EXPECT_NEAR(1.0, s.position[0], 1e-12);
+  EXPECT_DOUBLE_EQ(0.0, s.velocity[0]);
+  EXPECT_DOUBLE_EQ(0.0, s.acceleration[0]);
+  seg.sample(2.0, s);  // at the end: the end state
   EXPECT_NEAR(0.5, s.velocity[0], 1e-12);
 }
 
@@ -98,10 +120,17 @@ TEST(QuinticSplineSegmentTest, BadArguments)
   State two;
   two.position = { 0.0, 1.0 };
   EXPECT_THROW(Segment(0.0, state(0.0), 1.0, two), std::invalid_argument);
-  Segment zero(1.0, state(0.0), 1.0, state(3.0));  // zero duration: its end state
+  Segment zero(1.0, state(0.0, { 2.0 }), 1.0, state(3.0, { 4.0 }));  // zero duration: its start state
   State s;
   zero.sample(1.0, s);
-  EXPECT_DOUBLE_EQ(3.0, s.position[0]);
+  EXPECT_DOUBLE_EQ(0.0, s.position[0]);
+  EXPECT_DOUBLE_EQ(2.0, s.velocity[0]);
+  zero.sample(2.0, s);
+  EXPECT_DOUBLE_EQ(0.0, s.position[0]);
+  EXPECT_DOUBLE_EQ(0.0, s.velocity[0]);
+  Segment none;  // default-constructed: samples nothing
+  none.sample(1.0, s);
+  EXPECT_TRUE(s.position.empty());
 }
 
 TEST(TolerancesTest, ZeroIsNotEnforcedNegativeDisables)

@@ -14,9 +14,9 @@ namespace trajectory_interface
  * and accelerations, a cubic when both give positions and velocities, a linear interpolation
  * otherwise (the order is chosen by what the end points give, as the original).
  *
- * Sampling before the start gives the start position with zero velocity and acceleration;
- * sampling after the end gives the end state (at rest for a linear segment, whose end points
- * give no velocity).
+ * Sampling before the start gives the start position, after the end the end position, both
+ * with zero velocity and acceleration (as the original). A zero-duration segment is its start
+ * state.
  */
 template <class ScalarType>
 class QuinticSplineSegment
@@ -50,7 +50,6 @@ public:
 
     start_time_ = start_time;
     duration_ = end_time - start_time;
-    linear_ = !has_vel;
     coefs_.assign(dim, Coefs{});
     const Scalar T = duration_;
     for (std::size_t i = 0; i < dim; ++i)
@@ -60,12 +59,12 @@ public:
       const Scalar p0 = start_state.position[i], p1 = end_state.position[i];
       if (T == Scalar(0))
       {
-        // Degenerate segment: it is its end state.
-        c[0] = p1;
+        // Degenerate segment: it is its start state.
+        c[0] = p0;
         if (has_vel)
-          c[1] = end_state.velocity[i];
+          c[1] = start_state.velocity[i];
         if (has_acc)
-          c[2] = end_state.acceleration[i] / Scalar(2);
+          c[2] = start_state.acceleration[i] / Scalar(2);
         continue;
       }
       if (has_acc)
@@ -117,15 +116,16 @@ public:
         state.acceleration[i] = Scalar(0);
         continue;
       }
-      if (t > duration_ && linear_)
+      if (t > duration_)
       {
-        // A linear segment gives no end velocity: past its end the joint is at rest.
-        state.position[i] = c[1] * duration_ + c[0];
+        // Past the end: at rest at the end position.
+        const Scalar d = duration_;
+        state.position[i] = ((((c[5] * d + c[4]) * d + c[3]) * d + c[2]) * d + c[1]) * d + c[0];
         state.velocity[i] = Scalar(0);
         state.acceleration[i] = Scalar(0);
         continue;
       }
-      const Scalar s = t > duration_ ? duration_ : t;
+      const Scalar s = t;
       state.position[i] = ((((c[5] * s + c[4]) * s + c[3]) * s + c[2]) * s + c[1]) * s + c[0];
       state.velocity[i] = (((Scalar(5) * c[5] * s + Scalar(4) * c[4]) * s + Scalar(3) * c[3]) * s + Scalar(2) * c[2]) * s + c[1];
       state.acceleration[i] = ((Scalar(20) * c[5] * s + Scalar(12) * c[4]) * s + Scalar(6) * c[3]) * s + Scalar(2) * c[2];
@@ -142,7 +142,6 @@ private:
   std::vector<Coefs> coefs_;
   Time start_time_ = Time(0);
   Time duration_ = Time(0);
-  bool linear_ = true;
 };
 
 }  // namespace trajectory_interface
