@@ -207,6 +207,10 @@ def test_time_arithmetic_and_float64_on_the_avr(bridge, core, tmp_path):
     double is 4 bytes) give roscpp's results; a float64 from the host is narrowed to the AVR's
     float and widened back as the original's serialiser does; nh.now() stamps follow the host's
     clock."""
+    # the module's roscore may carry /use_sim_time from robot_config.launch (hardware in the
+    # loop): this test runs on the wall clock
+    subprocess.run(['rosparam', 'delete', '/use_sim_time'], env=core.env, capture_output=True,
+                   timeout=60)
     b = bridge(harness.build('time_float64'))
     b.wait_log('Setup subscriber on float_in [std_msgs/Float64]')
     out = b.echo('/arith')
