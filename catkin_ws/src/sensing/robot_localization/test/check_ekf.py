@@ -2,7 +2,6 @@
 """rostest: ekf_localization_node fuses wheel odometry + IMU yaw rate (sim time) into `odom`
 (remapped odometry/filtered) and TF odom->base_link; set_pose resets the state; an
 out-of-order message is ignored."""
-import math
 import time
 import unittest
 
@@ -14,14 +13,11 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
 from geometry_msgs.msg import PoseWithCovarianceStamped
 
+from course_runtime.geometry import yaw_of
 from robot_localization.srv import SetPose, SetPoseRequest
 
 TIMEOUT = 60.0       # wall seconds for every wait
 V, W = 0.5, 0.2      # m/s, rad/s
-
-
-def yaw_of(q):
-    return math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
 
 
 class EkfNodeTest(unittest.TestCase):
