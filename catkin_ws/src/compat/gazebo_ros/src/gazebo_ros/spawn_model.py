@@ -111,6 +111,16 @@ def find_database_model(name, paths):
     return model_sdf_file(model_dir)
 
 
+def database_model_sdf(name, env=None):
+    """Path of the SDF file of model://name as gzserver finds it for the original's -database:
+    the model paths, then the model database (downloaded once into ~/.gazebo/models)."""
+    resolve = _resolve()
+    try:
+        return resolve.ModelPaths(env=env).model_sdf(name)
+    except resolve.ModelError as e:
+        raise SpawnError('-database %s: %s' % (name, e))
+
+
 def read_file(path):
     if not os.path.exists(path):
         raise SpawnError('Error: specified file %s does not exist' % path)
@@ -137,8 +147,9 @@ def load_model_xml(args, get_param=None, stdin=None, model_paths=None):
             raise SpawnError('Error: param %s does not exist or is empty' % args.param)
         return value
     if args.database:
-        paths = model_search_path() if model_paths is None else model_paths
-        return read_file(find_database_model(args.database, paths))
+        if model_paths is not None:
+            return read_file(find_database_model(args.database, model_paths))
+        return read_file(database_model_sdf(args.database))
     if args.stdin:
         text = (stdin if stdin is not None else sys.stdin).read()
         if not text.strip():
