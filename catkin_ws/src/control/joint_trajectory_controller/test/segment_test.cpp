@@ -213,61 +213,61 @@ protected:
   }
   std::vector<std::string> joint_names;
   std::vector<bool> wrap;
-  Trajectory<Segment> current;
-  InitJointTrajectoryOptions<Segment> options;
+  SegmentsPerJoint<Segment> current;
+  UpdateJointTrajectoryOptions<Segment> options;
   trajectory_msgs::JointTrajectory msg;
   TrajectoryError error;
 };
 
 TEST_F(InitTrajectoryTest, BridgeAndPoints)
 {
-  const Trajectory<Segment> traj = initJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
+  const SegmentsPerJoint<Segment> traj = updateJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
   ASSERT_EQ(2u, traj.size());
   EXPECT_EQ(0, error.error_code);
   State s;
-  sample<Segment>(traj[0], 10.0, s);
+  sampleJointTrajectory<Segment>(traj[0], 10.0, s);
   EXPECT_NEAR(0.0, s.position[0], 1e-12);
-  sample<Segment>(traj[0], 11.0, s);
+  sampleJointTrajectory<Segment>(traj[0], 11.0, s);
   EXPECT_NEAR(1.0, s.position[0], 1e-12);
-  sample<Segment>(traj[0], 11.5, s);
+  sampleJointTrajectory<Segment>(traj[0], 11.5, s);
   EXPECT_NEAR(1.5, s.position[0], 1e-12);  // positions only: linear
-  sample<Segment>(traj[1], 12.0, s);
+  sampleJointTrajectory<Segment>(traj[1], 12.0, s);
   EXPECT_NEAR(3.0, s.position[0], 1e-12);
-  sample<Segment>(traj[1], 20.0, s);
+  sampleJointTrajectory<Segment>(traj[1], 20.0, s);
   EXPECT_NEAR(3.0, s.position[0], 1e-12);
 }
 
 TEST_F(InitTrajectoryTest, ReplacesOnlyTheFuture)
 {
-  current = initJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
+  current = updateJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
   // A new trajectory starting at 11.5 keeps the current one until then.
   trajectory_msgs::JointTrajectory next = msg;
   next.header.stamp = ros::Time(11.5);
   next.points.resize(1);
   next.points[0].positions = { -1.0, 0.0 };
   next.points[0].time_from_start = ros::Duration(1.0);
-  const Trajectory<Segment> traj = initJointTrajectory<Segment>(next, ros::Time(10.5), options, error);
+  const SegmentsPerJoint<Segment> traj = updateJointTrajectory<Segment>(next, ros::Time(10.5), options, error);
   ASSERT_EQ(2u, traj.size());
   State s;
-  sample<Segment>(traj[0], 11.0, s);
+  sampleJointTrajectory<Segment>(traj[0], 11.0, s);
   EXPECT_NEAR(1.0, s.position[0], 1e-12);  // still the current trajectory
-  sample<Segment>(traj[0], 11.5, s);
+  sampleJointTrajectory<Segment>(traj[0], 11.5, s);
   EXPECT_NEAR(1.5, s.position[0], 1e-12);  // the bridge starts where the current one is
-  sample<Segment>(traj[0], 12.5, s);
+  sampleJointTrajectory<Segment>(traj[0], 12.5, s);
   EXPECT_NEAR(-1.0, s.position[0], 1e-12);
 }
 
 TEST_F(InitTrajectoryTest, DropsPastPoints)
 {
   msg.header.stamp = ros::Time(9.5);  // first point at 10.5 is past at 11
-  const Trajectory<Segment> traj = initJointTrajectory<Segment>(msg, ros::Time(11.0), options, error);
+  const SegmentsPerJoint<Segment> traj = updateJointTrajectory<Segment>(msg, ros::Time(11.0), options, error);
   ASSERT_EQ(2u, traj.size());
   State s;
-  sample<Segment>(traj[0], 11.5, s);
+  sampleJointTrajectory<Segment>(traj[0], 11.5, s);
   EXPECT_NEAR(2.0, s.position[0], 1e-12);  // bridged straight to the last point
 
   msg.header.stamp = ros::Time(5.0);  // every point is past
-  EXPECT_TRUE(initJointTrajectory<Segment>(msg, ros::Time(11.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(msg, ros::Time(11.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_GOAL, error.error_code);
   EXPECT_EQ("Dropping all 2 trajectory point(s), as they occur before the current time.", error.error_string);
 }
@@ -278,47 +278,47 @@ TEST_F(InitTrajectoryTest, BadMessages)
   bad.joint_names = { "j1" };
   for (auto& p : bad.points)
     p.positions.resize(1);
-  EXPECT_TRUE(initJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_JOINTS, error.error_code);
 
   bad = msg;
   bad.joint_names[0] = "bad_name";
   error = TrajectoryError();
-  EXPECT_TRUE(initJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_JOINTS, error.error_code);
 
   bad = msg;
   bad.points[1].positions.pop_back();
   error = TrajectoryError();
-  EXPECT_TRUE(initJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_GOAL, error.error_code);
 
   bad = msg;
   bad.points[1].time_from_start = bad.points[0].time_from_start;
   error = TrajectoryError();
-  EXPECT_TRUE(initJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(bad, ros::Time(1.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_GOAL, error.error_code);
 }
 
 TEST_F(InitTrajectoryTest, PartialJointsKeepTheirTrajectory)
 {
-  current = initJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
+  current = updateJointTrajectory<Segment>(msg, ros::Time(10.0), options, error);
   trajectory_msgs::JointTrajectory partial;
   partial.joint_names = { "j2" };
   partial.points.resize(1);
   partial.points[0].positions = { -1.0 };
   partial.points[0].time_from_start = ros::Duration(1.0);
-  EXPECT_TRUE(initJointTrajectory<Segment>(partial, ros::Time(10.0), options, error).empty());
+  EXPECT_TRUE(updateJointTrajectory<Segment>(partial, ros::Time(10.0), options, error).empty());
   EXPECT_EQ(Result::INVALID_JOINTS, error.error_code);
 
   options.allow_partial_joints_goal = true;
   error = TrajectoryError();
-  const Trajectory<Segment> traj = initJointTrajectory<Segment>(partial, ros::Time(10.0), options, error);
+  const SegmentsPerJoint<Segment> traj = updateJointTrajectory<Segment>(partial, ros::Time(10.0), options, error);
   ASSERT_EQ(2u, traj.size());
   State s;
-  sample<Segment>(traj[0], 12.0, s);
+  sampleJointTrajectory<Segment>(traj[0], 12.0, s);
   EXPECT_NEAR(2.0, s.position[0], 1e-12);  // j1 unchanged
-  sample<Segment>(traj[1], 11.0, s);
+  sampleJointTrajectory<Segment>(traj[1], 11.0, s);
   EXPECT_NEAR(-1.0, s.position[0], 1e-12);
 }
 
@@ -326,35 +326,35 @@ TEST_F(InitTrajectoryTest, ContinuousJointWraps)
 {
   msg.points.resize(1);
   msg.points[0].positions = { 2.0 * M_PI + 0.5, 2.0 * M_PI + 0.5 };
-  const Trajectory<Segment> traj = initJointTrajectory<Segment>(msg, ros::Time(0.0), options, error);
+  const SegmentsPerJoint<Segment> traj = updateJointTrajectory<Segment>(msg, ros::Time(0.0), options, error);
   State s;
-  sample<Segment>(traj[0], 1.0, s);
+  sampleJointTrajectory<Segment>(traj[0], 1.0, s);
   EXPECT_NEAR(2.0 * M_PI + 0.5, s.position[0], 1e-9);  // j1 is not continuous
-  sample<Segment>(traj[1], 1.0, s);
+  sampleJointTrajectory<Segment>(traj[1], 1.0, s);
   EXPECT_NEAR(0.5, s.position[0], 1e-9);  // j2 takes the short way
 }
 
 TEST(HoldTrajectoryTest, StopRampAndImmediateStop)
 {
   std::vector<std::string> names = { "j" };
-  Trajectory<Segment> moving(1);
+  SegmentsPerJoint<Segment> moving(1);
   moving[0].emplace_back(0.0, state(0.0, { 1.0 }, { 0.0 }), 10.0, state(10.0, { 1.0 }, { 0.0 }));
-  const Trajectory<Segment> ramp = holdTrajectory<Segment>(&moving, { 4.0 }, 5.0, 0.4);
+  const SegmentsPerJoint<Segment> ramp = holdTrajectory<Segment>(&moving, { 4.0 }, 5.0, 0.4);
   State s;
   double last_pos = -1.0;
   for (double t = 5.0; t <= 5.4 + 1e-9; t += 0.01)
   {
-    sample<Segment>(ramp[0], t, s);
+    sampleJointTrajectory<Segment>(ramp[0], t, s);
     EXPECT_GE(s.velocity[0], -1e-12);  // decelerates without reversing
     EXPECT_GE(s.position[0], last_pos);
     last_pos = s.position[0];
   }
-  sample<Segment>(ramp[0], 5.4, s);
+  sampleJointTrajectory<Segment>(ramp[0], 5.4, s);
   EXPECT_NEAR(5.0 + 0.5 * 1.0 * 0.4, s.position[0], 1e-9);  // from the desired position, not the actual one
   EXPECT_NEAR(0.0, s.velocity[0], 1e-9);
 
-  const Trajectory<Segment> now = holdTrajectory<Segment>(&moving, { 4.0 }, 5.0, 0.0);
-  sample<Segment>(now[0], 5.0, s);
+  const SegmentsPerJoint<Segment> now = holdTrajectory<Segment>(&moving, { 4.0 }, 5.0, 0.0);
+  sampleJointTrajectory<Segment>(now[0], 5.0, s);
   EXPECT_DOUBLE_EQ(4.0, s.position[0]);  // at the actual position
   EXPECT_DOUBLE_EQ(0.0, s.velocity[0]);
 }

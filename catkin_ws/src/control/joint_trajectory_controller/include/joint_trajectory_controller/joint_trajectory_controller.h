@@ -47,7 +47,7 @@ public:
   typedef SegmentImpl Segment;
   typedef typename Segment::Scalar Scalar;
   typedef typename Segment::State State;
-  typedef joint_trajectory_controller::Trajectory<Segment> Trajectory;
+  typedef joint_trajectory_controller::SegmentsPerJoint<Segment> Trajectory;
   typedef std::shared_ptr<const Trajectory> TrajectoryPtr;
   typedef actionlib::ActionServer<control_msgs::FollowJointTrajectoryAction> ActionServer;
   typedef ActionServer::GoalHandle GoalHandle;

@@ -217,8 +217,8 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
   GoalTracker* goal_to_check = nullptr;
   for (unsigned int i = 0; i < n_joints; ++i)
   {
-    const JointTrajectory<Segment>& joint_traj = traj[i];
-    const std::size_t seg_idx = findSegment<Segment>(joint_traj, now);
+    const SegmentsOfJoint<Segment>& joint_traj = traj[i];
+    const std::size_t seg_idx = findSegmentIndex<Segment>(joint_traj, now);
     const JointTrajectorySegment<Segment>& segment = joint_traj[seg_idx];
     segment.sample(now, desired_joint_state_);
 
@@ -234,7 +234,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
     state_error_.acceleration[i] = 0.0;
 
     // Tolerances of the goal this segment belongs to.
-    GoalTracker* goal = segment.getGoalHandle().get();
+    GoalTracker* goal = dynamic_cast<GoalTracker*>(segment.getGoalHandle().get());
     if (!goal || !goal->isActive())
       continue;
     goal_to_check = goal;
@@ -346,14 +346,14 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::updateTrajectory
     return true;
   }
   TrajectoryPtr curr = currentTrajectory();
-  InitJointTrajectoryOptions<Segment> options;
+  UpdateJointTrajectoryOptions<Segment> options;
   options.current_trajectory = curr.get();
   options.joint_names = &joint_names_;
   options.angle_wraparound = &angle_wraparound_;
   options.goal = goal;
   options.tolerances = &tolerances;
   options.allow_partial_joints_goal = allow_partial_joints_goal_;
-  Trajectory traj = initJointTrajectory<Segment>(msg, now, options, error);
+  Trajectory traj = updateJointTrajectory<Segment>(msg, now, options, error);
   if (traj.empty())
     return false;
   setTrajectory(std::make_shared<const Trajectory>(std::move(traj)));
@@ -440,7 +440,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::goalCB(GoalHandl
     covered[j] = true;
   if (goal->trajectory.points.empty())
     covered.assign(joint_names_.size(), true);  // an empty goal stops every joint
-  GoalTrackerPtr tracker = std::make_shared<GoalTracker>(gh, covered);
+  GoalTrackerPtr tracker(new GoalTracker(gh, covered));
   SegmentTolerances<Scalar> tolerances = default_tolerances_;
   updateSegmentTolerances<Scalar>(*goal, joint_names_, tolerances);
 
@@ -530,7 +530,7 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::queryStateServic
   State state;
   for (unsigned int i = 0; i < n_joints; ++i)
   {
-    sample<Segment>((*traj)[i], req.time.toSec(), state);
+    sampleJointTrajectory<Segment>((*traj)[i], req.time.toSec(), state);
     resp.position[i] = state.position[0];
     resp.velocity[i] = state.velocity[0];
     resp.acceleration[i] = state.acceleration[0];

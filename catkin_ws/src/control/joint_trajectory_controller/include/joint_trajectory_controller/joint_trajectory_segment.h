@@ -2,13 +2,21 @@
 #pragma once
 
 #include <atomic>
-#include <memory>
+#include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include <angles/angles.h>
+#include <boost/shared_ptr.hpp>
+
 #include <actionlib/server/action_server.h>
 #include <control_msgs/FollowJointTrajectoryAction.h>
+#include <realtime_tools/realtime_server_goal_handle.h>
+#include <ros/time.h>
+#include <trajectory_msgs/JointTrajectoryPoint.h>
 
+#include <joint_trajectory_controller/joint_trajectory_msg_utils.h>
 #include <joint_trajectory_controller/tolerances.h>
 
 namespace joint_trajectory_controller
@@ -20,10 +28,11 @@ namespace joint_trajectory_controller
  * the action monitor timer (action_monitor_rate) reports it through the action server.
  * A goal that was preempted or canceled is no longer active, so the loop stops checking it.
  */
-class GoalTracker
+class GoalTracker : public realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction>
 {
 public:
   typedef actionlib::ServerGoalHandle<control_msgs::FollowJointTrajectoryAction> GoalHandle;
+  typedef realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction> Base;
   enum Outcome
   {
     ACTIVE = 0,
@@ -32,8 +41,8 @@ public:
     FINISHED = 3
   };
 
-  GoalTracker(const GoalHandle& gh, const std::vector<bool>& joints)
-    : gh_(gh), joints_(joints), successful_(joints.size(), 0)
+  GoalTracker(GoalHandle gh, const std::vector<bool>& joints)
+    : Base(gh), joints_(joints), successful_(joints.size(), 0)
   {
   }
 
@@ -109,7 +118,6 @@ public:
 private:
   static constexpr int WRITING_ = 10;    // transient while the loop writes the result
   static constexpr int REPORTING_ = 11;  // transient while a non-realtime thread reports it
-  GoalHandle gh_;
   std::vector<bool> joints_;
   std::vector<char> successful_;
   std::atomic<int> outcome_{ ACTIVE };
@@ -117,11 +125,16 @@ private:
   const char* error_string_ = "";
 };
 
-typedef std::shared_ptr<GoalTracker> GoalTrackerPtr;
+typedef boost::shared_ptr<GoalTracker> GoalTrackerPtr;
+
 
 /**
- * \brief One joint's trajectory segment with the goal it belongs to (if it came through the
- * action interface) and the tolerances it must be followed with.
+ * \brief One joint's trajectory segment (\p Segment, e.g. trajectory_interface::QuinticSplineSegment)
+ * with the (realtime) goal handle it belongs to, the tolerances it must be followed with and an
+ * error code, as the original's. It can be built from two trajectory_msgs points.
+ *
+ * The controller's own goals are GoalTracker objects (a RealtimeGoalHandle with the per-joint
+ * bookkeeping of the control loop); any RealtimeGoalHandle may be attached.
  */
 template <class Segment>
 class JointTrajectorySegment : public Segment
@@ -129,23 +142,116 @@ class JointTrajectorySegment : public Segment
 public:
   typedef typename Segment::Scalar Scalar;
   typedef typename Segment::Time Time;
-  typedef typename Segment::State State;
+
+  typedef realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction> RealtimeGoalHandle;
+  typedef boost::shared_ptr<RealtimeGoalHandle> RealtimeGoalHandlePtr;
+
+  /// The segment's state, also constructible from a trajectory point (plus position offsets).
+  struct State : public Segment::State
+  {
+    typedef typename Segment::State::Scalar Scalar;
+    State() : Segment::State() {}
+    State(unsigned int size) : Segment::State(size) {}
+    State(const typename Segment::State& state) : Segment::State(state) {}
+
+    /**
+     * \param point A trajectory point: its positions, and velocities and accelerations if given.
+     * \param position_offset Added to the positions (wrapping of continuous joints); empty: none,
+     * else one per position.
+     * \throw std::invalid_argument On sizes that disagree.
+     */
+    State(const trajectory_msgs::JointTrajectoryPoint& point,
+          const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+    {
+      init(point, position_offset);
+    }
+
+    void init(const trajectory_msgs::JointTrajectoryPoint& point,
+              const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+    {
+      const unsigned int dim = point.positions.size();
+      if (!isValid(point, dim))
+        throw std::invalid_argument("Size mismatch in trajectory point position, velocity or acceleration data.");
+      if (!position_offset.empty() && position_offset.size() != dim)
+        throw std::invalid_argument("Size mismatch between trajectory point "
+                                    "and vector specifying whether joints wrap around.");
+      this->position.clear();
+      this->velocity.clear();
+      this->acceleration.clear();
+      for (unsigned int i = 0; i < dim; ++i)
+        this->position.push_back(point.positions[i] + (position_offset.empty() ? Scalar(0) : position_offset[i]));
+      this->velocity.assign(point.velocities.begin(), point.velocities.end());
+      this->acceleration.assign(point.accelerations.begin(), point.accelerations.end());
+    }
+  };
 
   JointTrajectorySegment() = default;
-  JointTrajectorySegment(const Time& start_time, const State& start_state, const Time& end_time,
-                         const State& end_state)
-    : Segment(start_time, start_state, end_time, end_state)
+
+  /// Segment from \p start_state at \p start_time to \p end_state at \p end_time.
+  JointTrajectorySegment(const Time& start_time, const typename Segment::State& start_state, const Time& end_time,
+                         const typename Segment::State& end_state)
   {
+    Segment::init(start_time, start_state, end_time, end_state);
   }
 
-  const GoalTrackerPtr& getGoalHandle() const { return goal_; }
-  void setGoalHandle(const GoalTrackerPtr& goal) { goal_ = goal; }
+  /**
+   * \brief Segment between two points of a trajectory that starts at \p traj_start_time (each
+   * point is reached at traj_start_time + its time_from_start).
+   * \throw std::invalid_argument If the points' sizes disagree (with each other or with
+   * \p position_offset) or the segment cannot be built.
+   */
+  JointTrajectorySegment(const ros::Time& traj_start_time, const trajectory_msgs::JointTrajectoryPoint& start_point,
+                         const trajectory_msgs::JointTrajectoryPoint& end_point,
+                         const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+  {
+    if (start_point.positions.size() != end_point.positions.size())
+      throw std::invalid_argument("Can't construct segment from ROS message: Start/end points data size mismatch.");
+    const Time start_time = (traj_start_time + start_point.time_from_start).toSec();
+    const Time end_time = (traj_start_time + end_point.time_from_start).toSec();
+    try
+    {
+      const State start_state(start_point, position_offset);
+      const State end_state(end_point, position_offset);
+      Segment::init(start_time, start_state, end_time, end_state);
+    }
+    catch (const std::invalid_argument& ex)
+    {
+      throw std::invalid_argument(std::string("Can't construct segment from ROS message: ") + ex.what());
+    }
+  }
+
+  /// The (realtime) goal handle this segment belongs to (null: none).
+  RealtimeGoalHandlePtr getGoalHandle() const { return rt_goal_handle_; }
+  void setGoalHandle(RealtimeGoalHandlePtr rt_goal_handle) { rt_goal_handle_ = rt_goal_handle; }
+
+  /// The tolerances this segment is followed with.
   const SegmentTolerancesPerJoint<Scalar>& getTolerances() const { return tolerances_; }
   void setTolerances(const SegmentTolerancesPerJoint<Scalar>& tolerances) { tolerances_ = tolerances; }
 
+  /// A FollowJointTrajectoryResult error code attached to the segment (0: SUCCESSFUL).
+  int getErrorCode() const { return error_code_; }
+  void setErrorCode(int error_code) { error_code_ = error_code; }
+
 private:
-  GoalTrackerPtr goal_;
+  RealtimeGoalHandlePtr rt_goal_handle_;
   SegmentTolerancesPerJoint<Scalar> tolerances_;
+  int error_code_ = 0;
 };
+
+/**
+ * \brief Offset to add to a continuous joint's new positions so that moving from \p prev_position
+ * to \p next_position takes the shortest way (a half-turn goes the way the raw difference points);
+ * zero if \p angle_wraparound is false.
+ */
+template <class Scalar>
+Scalar wraparoundJointOffset(const Scalar& prev_position, const Scalar& next_position, const bool& angle_wraparound)
+{
+  if (!angle_wraparound)
+    return Scalar(0);
+  Scalar dist = angles::shortest_angular_distance(prev_position, next_position);
+  if (std::abs(std::abs(dist) - M_PI) < 1e-9)
+    dist = next_position > prev_position ? std::abs(dist) : -std::abs(dist);
+  return (prev_position + dist) - next_position;
+}
 
 }  // namespace joint_trajectory_controller
