@@ -123,6 +123,43 @@ TEST_F(JointTrajectorySegmentTest, GoalHandleTolerancesErrorCode)
   EXPECT_EQ(control_msgs::FollowJointTrajectoryResult::PATH_TOLERANCE_VIOLATED, segment.getErrorCode());
 }
 
+TEST_F(JointTrajectorySegmentTest, PermutationOfEarlierReleases)
+{
+  p_start.positions.push_back(-p_start.positions[0]);
+  p_start.velocities.push_back(-p_start.velocities[0]);
+  p_end.positions.push_back(-p_end.positions[0]);
+  p_end.velocities.push_back(-p_end.velocities[0]);
+  Segment::State s;
+  const Segment same(traj_start_time, p_start, p_end, std::vector<unsigned int>{ 0, 1 });
+  same.sample(same.startTime(), s);
+  EXPECT_EQ(p_start.positions[0], s.position[0]);
+  EXPECT_EQ(p_start.positions[1], s.position[1]);
+  const Segment swapped(traj_start_time, p_start, p_end, std::vector<unsigned int>{ 1, 0 });
+  swapped.sample(swapped.startTime(), s);
+  EXPECT_EQ(p_start.positions[1], s.position[0]);
+  EXPECT_EQ(p_start.positions[0], s.position[1]);
+  EXPECT_EQ(p_start.velocities[1], s.velocity[0]);
+  EXPECT_THROW(Segment(traj_start_time, p_start, p_end, std::vector<unsigned int>(1, 0)), std::invalid_argument);
+  EXPECT_THROW(Segment(traj_start_time, p_start, p_end, std::vector<unsigned int>(2, 2)), std::invalid_argument);
+  EXPECT_THROW(Segment(traj_start_time, p_start, p_end, std::vector<unsigned int>(), std::vector<double>(3, 0.0)),
+               std::invalid_argument);
+}
+
+TEST(WraparoundOffsetTest, PerJointVectors)
+{
+  const double half_pi = M_PI / 2.0, two_pi = 2.0 * M_PI;
+  const std::vector<double> pos1 = { half_pi / 2.0, half_pi / 2.0 };
+  const std::vector<double> pos2 = { two_pi + half_pi, 2.0 * two_pi + half_pi };
+  std::vector<double> off = wraparoundOffset(pos1, pos2, std::vector<bool>{ true, false });
+  ASSERT_EQ(2u, off.size());
+  EXPECT_NEAR(-two_pi, off[0], 1e-9);
+  EXPECT_NEAR(0.0, off[1], 1e-9);
+  off = wraparoundOffset<double>(pos2, pos1, std::vector<bool>(2, true));
+  EXPECT_NEAR(two_pi, off[0], 1e-9);
+  EXPECT_NEAR(2.0 * two_pi, off[1], 1e-9);
+  EXPECT_TRUE(wraparoundOffset(pos1, pos2, std::vector<bool>(3, true)).empty());
+}
+
 TEST(WraparoundJointOffsetTest, WrappingAndNot)
 {
   const double half_pi = M_PI / 2.0, two_pi = 2.0 * M_PI;

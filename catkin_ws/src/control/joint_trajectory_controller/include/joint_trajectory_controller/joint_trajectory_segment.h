@@ -169,9 +169,31 @@ public:
     void init(const trajectory_msgs::JointTrajectoryPoint& point,
               const std::vector<Scalar>& position_offset = std::vector<Scalar>())
     {
+      init(point, std::vector<unsigned int>(), position_offset);
+    }
+
+    /**
+     * \brief As above, with the point's joints reordered: the i-th joint of the state is the
+     * point's permutation[i]-th (empty: the point's order; earlier releases' API). Offsets are
+     * in the state's order.
+     */
+    State(const trajectory_msgs::JointTrajectoryPoint& point, const std::vector<unsigned int>& permutation,
+          const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+    {
+      init(point, permutation, position_offset);
+    }
+
+    void init(const trajectory_msgs::JointTrajectoryPoint& point, const std::vector<unsigned int>& permutation,
+              const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+    {
       const unsigned int dim = point.positions.size();
       if (!isValid(point, dim))
         throw std::invalid_argument("Size mismatch in trajectory point position, velocity or acceleration data.");
+      if (!permutation.empty() && permutation.size() != dim)
+        throw std::invalid_argument("Size mismatch between trajectory point and permutation vector.");
+      for (unsigned int index : permutation)
+        if (index >= dim)
+          throw std::invalid_argument("Permutation vector contains out-of-range indices.");
       if (!position_offset.empty() && position_offset.size() != dim)
         throw std::invalid_argument("Size mismatch between trajectory point "
                                     "and vector specifying whether joints wrap around.");
@@ -179,9 +201,14 @@ public:
       this->velocity.clear();
       this->acceleration.clear();
       for (unsigned int i = 0; i < dim; ++i)
-        this->position.push_back(point.positions[i] + (position_offset.empty() ? Scalar(0) : position_offset[i]));
-      this->velocity.assign(point.velocities.begin(), point.velocities.end());
-      this->acceleration.assign(point.accelerations.begin(), point.accelerations.end());
+      {
+        const unsigned int id = permutation.empty() ? i : permutation[i];
+        this->position.push_back(point.positions[id] + (position_offset.empty() ? Scalar(0) : position_offset[i]));
+        if (!point.velocities.empty())
+          this->velocity.push_back(point.velocities[id]);
+        if (!point.accelerations.empty())
+          this->acceleration.push_back(point.accelerations[id]);
+      }
     }
   };
 
@@ -213,6 +240,27 @@ public:
       const State start_state(start_point, position_offset);
       const State end_state(end_point, position_offset);
       Segment::init(start_time, start_state, end_time, end_state);
+    }
+    catch (const std::invalid_argument& ex)
+    {
+      throw std::invalid_argument(std::string("Can't construct segment from ROS message: ") + ex.what());
+    }
+  }
+
+  /// As above, with the points' joints reordered by \p permutation (see State; earlier releases' API).
+  JointTrajectorySegment(const ros::Time& traj_start_time, const trajectory_msgs::JointTrajectoryPoint& start_point,
+                         const trajectory_msgs::JointTrajectoryPoint& end_point,
+                         const std::vector<unsigned int>& permutation,
+                         const std::vector<Scalar>& position_offset = std::vector<Scalar>())
+  {
+    if (start_point.positions.size() != end_point.positions.size())
+      throw std::invalid_argument("Can't construct segment from ROS message: Start/end points data size mismatch.");
+    try
+    {
+      const State start_state(start_point, permutation, position_offset);
+      const State end_state(end_point, permutation, position_offset);
+      Segment::init((traj_start_time + start_point.time_from_start).toSec(), start_state,
+                    (traj_start_time + end_point.time_from_start).toSec(), end_state);
     }
     catch (const std::invalid_argument& ex)
     {
@@ -252,6 +300,23 @@ Scalar wraparoundJointOffset(const Scalar& prev_position, const Scalar& next_pos
   if (std::abs(std::abs(dist) - M_PI) < 1e-9)
     dist = next_position > prev_position ? std::abs(dist) : -std::abs(dist);
   return (prev_position + dist) - next_position;
+}
+
+/**
+ * \brief Per joint, wraparoundJointOffset(prev_position[i], next_position[i], angle_wraparound[i])
+ * (earlier releases' API); empty if the sizes disagree.
+ */
+template <class Scalar>
+std::vector<Scalar> wraparoundOffset(const std::vector<Scalar>& prev_position, const std::vector<Scalar>& next_position,
+                                     const std::vector<bool>& angle_wraparound)
+{
+  const std::size_t n = angle_wraparound.size();
+  if (prev_position.size() != n || next_position.size() != n)
+    return std::vector<Scalar>();
+  std::vector<Scalar> offset(n, Scalar(0));
+  for (std::size_t i = 0; i < n; ++i)
+    offset[i] = wraparoundJointOffset<Scalar>(prev_position[i], next_position[i], angle_wraparound[i]);
+  return offset;
 }
 
 }  // namespace joint_trajectory_controller
