@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <boost/make_shared.hpp>
+
 #include <hardware_interface/joint_command_interface.h>
 #include <joint_trajectory_controller/hold_trajectory_builder.h>
 #include <joint_trajectory_controller/stop_trajectory_builder.h>
@@ -100,6 +102,56 @@ TEST(StopTrajectoryBuilderTest, ComesToRestInTheStopDuration)
   }
   Trajectory wrong = preallocated(3);
   EXPECT_FALSE(builder.buildTrajectory(&wrong));
+}
+
+namespace
+{
+/// Exposes the base's protected API (as a test fixture befriended by FRIEND_TEST would use it).
+class FakeTrajectoryBuilder : public TrajectoryBuilder<SegmentImpl>
+{
+public:
+  using TrajectoryBuilder<SegmentImpl>::getStartTime;
+  using TrajectoryBuilder<SegmentImpl>::createGoalHandlePtr;
+  using TrajectoryBuilder<SegmentImpl>::createDefaultGoalHandle;
+
+protected:
+  bool buildTrajectory(::Trajectory* /*trajectory*/) override { return true; }
+};
+}  // namespace
+
+TEST(TrajectoryBuilderTest, StartTimeAndGoalHandleReference)
+{
+  FakeTrajectoryBuilder builder;
+  EXPECT_FALSE(builder.getStartTime().is_initialized());
+  builder.setStartTime(0.1);
+  EXPECT_EQ(0.1, builder.getStartTime().get());
+  EXPECT_FALSE(builder.createGoalHandlePtr());
+  EXPECT_FALSE(FakeTrajectoryBuilder::createDefaultGoalHandle());
+
+  actionlib::ServerGoalHandle<control_msgs::FollowJointTrajectoryAction> gh;
+  RealtimeGoalHandlePtr rt_goal = boost::make_shared<Segment::RealtimeGoalHandle>(gh);
+  builder.setGoalHandle(rt_goal);
+  EXPECT_EQ(1, rt_goal.use_count());  // only a reference is kept
+  EXPECT_EQ(rt_goal.get(), builder.createGoalHandlePtr().get());
+  builder.reset();
+  EXPECT_FALSE(builder.getStartTime().is_initialized());
+  EXPECT_FALSE(builder.createGoalHandlePtr());
+}
+
+TEST(StopTrajectoryBuilderTest, SegmentsShareTheGoalHandle)
+{
+  Segment::State hold_state{ 2u };
+  StopTrajectoryBuilder<SegmentImpl> builder(0.2, hold_state);
+  actionlib::ServerGoalHandle<control_msgs::FollowJointTrajectoryAction> gh;
+  RealtimeGoalHandlePtr rt_goal = boost::make_shared<Segment::RealtimeGoalHandle>(gh);
+  builder.setStartTime(0.11)->setGoalHandle(rt_goal);
+  EXPECT_EQ(1, rt_goal.use_count());
+  Trajectory traj = preallocated(2);
+  ASSERT_TRUE(builder.buildTrajectory(&traj));
+  EXPECT_EQ(3, rt_goal.use_count());  // one per joint's segment
+  Segment::State sampled{ 1 };
+  traj[1][0].sample(traj[1][0].endTime(), sampled);
+  EXPECT_NEAR(0.0, sampled.velocity.at(0), 1e-9);
 }
 
 int main(int argc, char** argv)
