@@ -118,7 +118,7 @@ public:
       else
         gh_.setSucceeded();
     }
-    if (req_feedback_ && gh_.getGoalStatus().status == GoalStatus::ACTIVE)
+    if (req_feedback_ && status == GoalStatus::ACTIVE)  // the status before this call, as the original
       gh_.publishFeedback(*req_feedback_);
   }
 
