@@ -93,3 +93,13 @@ int main(int argc, char** argv)
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }
+
+TEST(MsgUtilsTest, IsBeforePoint)
+{
+  trajectory_msgs::JointTrajectoryPoint point;
+  point.time_from_start = ros::Duration(1.0);
+  const internal::IsBeforePoint before(ros::Time(2.0));
+  EXPECT_TRUE(before(ros::Time(2.5), point));
+  EXPECT_FALSE(before(ros::Time(3.0), point));  // reached at 3.0: not before it
+  EXPECT_FALSE(before(ros::Time(3.5), point));
+}

@@ -14,6 +14,21 @@ namespace joint_trajectory_controller
 {
 namespace internal
 {
+/// Comparator of findPoint: true if \p time comes before \p point of a message starting at msg_start_time.
+class IsBeforePoint
+{
+public:
+  IsBeforePoint(const ros::Time& msg_start_time) : msg_start_time_(msg_start_time) {}
+
+  bool operator()(const ros::Time& time, const trajectory_msgs::JointTrajectoryPoint& point) const
+  {
+    return time < msg_start_time_ + point.time_from_start;
+  }
+
+private:
+  ros::Time msg_start_time_;
+};
+
 /// The message's start time: header.stamp, or \p time when the stamp is zero.
 inline ros::Time startTime(const trajectory_msgs::JointTrajectory& msg, const ros::Time& time)
 {
@@ -59,10 +74,7 @@ inline bool isTimeStrictlyIncreasing(const trajectory_msgs::JointTrajectory& msg
 inline std::vector<trajectory_msgs::JointTrajectoryPoint>::const_iterator
 findPoint(const trajectory_msgs::JointTrajectory& msg, const ros::Time& time)
 {
-  const ros::Time start = internal::startTime(msg, time);
-  auto before = [&start](const ros::Time& t, const trajectory_msgs::JointTrajectoryPoint& p) {
-    return t < start + p.time_from_start;
-  };
+  const internal::IsBeforePoint before(internal::startTime(msg, time));
   const auto first = msg.points.begin(), last = msg.points.end();
   if (first == last || before(time, *first))
     return last;
