@@ -13,6 +13,7 @@ import importlib.util
 import os
 import re
 import shutil
+import subprocess
 
 import pytest
 import yaml
@@ -164,3 +165,32 @@ def test_rosdep_install_in_the_workspace_as_printed(rosdep_env):
                            rosdep_env, cwd=ws, timeout=300)
     assert rc == 0 and 'Cannot locate rosdep definition' not in out + err, out + err
     assert not [l for l in out.splitlines() if l.strip() and not l.startswith('#')], out
+
+
+def test_rules_define_every_key_of_debians_ros_packages():
+    """rospack asks rosdep about every dependency that is not a package (`rospack depends1 PKG`
+    of a student's package walks Debian's catkin, rospy, ...): every key the package.xml of an
+    installed Debian ROS package names must be known, or rospack fails with "rosdep claims that
+    it is not a system dependency"."""
+    with open(RULES) as f:
+        rules = dict(yaml.safe_load(f))
+    with open(DEBIAN_RULES) as f:
+        rules.update(yaml.safe_load(f))
+    listed = subprocess.run(['rospack', 'list'], capture_output=True, text=True, check=True)
+    installed = dict(line.split(' ', 1) for line in listed.stdout.splitlines())
+    system = {n: d for n, d in installed.items() if d.startswith('/usr/')}
+    assert len(system) >= 50, system
+    missing = {}
+    for name, d in sorted(system.items()):
+        if not os.path.exists(os.path.join(d, 'package.xml')):
+            continue
+        for key in sorted(_keys(d) - set(rules) - set(installed)):
+            missing.setdefault(key, []).append(name)
+    assert not missing, 'rosdep keys missing from deps/rosdep/ros-course.yaml: %s' % missing
+
+
+def test_rospack_depends_of_a_package_on_debians_ros_is_clean():
+    """`rospack depends rospy` resolves Debian's whole tree without a rosdep error line."""
+    r = subprocess.run(['rospack', 'depends', 'rospy'], capture_output=True, text=True)
+    assert r.returncode == 0 and 'Error' not in r.stderr, r.stderr[-2000:]
+    assert 'roscpp' in r.stdout.split() or 'rosgraph' in r.stdout.split(), r.stdout
