@@ -64,7 +64,9 @@ class ArmSimTest(unittest.TestCase):
 
     def run_goal(self, goal):
         self.client.send_goal(goal)
-        self.wait('an action result', lambda: self.client.get_state() in TERMINAL)
+        # the terminal status can arrive before the result message: wait for both
+        self.wait('an action result', lambda: self.client.get_state() in TERMINAL and
+                  self.client.get_result() is not None)
         return self.client.get_state(), self.client.get_result()
 
     def settle(self):

@@ -94,7 +94,10 @@ class JointTrajectoryControllerTest(unittest.TestCase):
             return self.states[ctrl]
 
     def result_of(self, client):
-        self.wait_wall('an action result', lambda: client.get_state() in TERMINAL)
+        # the status array can report the terminal state before the result message arrives
+        # (seen: REJECTED with get_result() None on a loaded machine): wait for both
+        self.wait_wall('an action result', lambda: client.get_state() in TERMINAL and
+                       client.get_result() is not None)
         return client.get_state(), client.get_result()
 
     def run_goal(self, goal, ctrl='arm_controller'):
