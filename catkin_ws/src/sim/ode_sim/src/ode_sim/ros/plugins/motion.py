@@ -58,21 +58,6 @@ def _root_ns(plugin):
     return plugin.params['robotNamespace'].strip() if plugin.has('robotNamespace') else ''
 
 
-def _tf_prefix(plugin):
-    """tf::getPrefixParam: the tf_prefix parameter searched from the plugin's namespace up."""
-    if not plugin.ctx.io.live:
-        return ''
-    try:
-        parts = [p for p in plugin.ns.split('/') if p]
-        for i in range(len(parts), -1, -1):
-            key = '/' + '/'.join(parts[:i] + ['tf_prefix'])
-            if rospy.has_param(key):
-                return str(rospy.get_param(key))
-    except Exception:                   # master gone: no prefix
-        return ''
-    return ''
-
-
 class PlanarMove(Plugin):
     """libgazebo_ros_planar_move.so"""
 
@@ -91,7 +76,7 @@ class PlanarMove(Plugin):
                           % (self.ns, 20.0))
             self.odometry_rate = 20.0
         self.cmd_timeout = self.param('cmdTimeout', -1.0, float, warn=False)
-        prefix = _tf_prefix(self)
+        prefix = self._tf_prefix()     # tf::getPrefixParam, searched upwards
         self.odom_frame_id = tf_resolve(prefix, self.odometry_frame)
         self.base_frame_id = tf_resolve(prefix, self.base_frame)
         self.cmd = (0.0, 0.0, 0.0)
