@@ -84,3 +84,22 @@ def test_display_launch_in_rviz(rviz_env, tmp_path, launch, args):
         assert p.alive() and 'process has died' not in p.output(), p.output()[-3000:]
     finally:
         p.stop()
+
+
+@pytest.mark.parametrize('launch', ['display_robot.launch', 'display_firstbot.launch'])
+def test_model_path_as_the_tutorial_types_it(rviz_env, tmp_path, launch):
+    """U 6.4 gives the model file as `model_path:=`; both launch files load that file."""
+    other = tmp_path / 'renamed.urdf'
+    other.write_text(urdf_text().replace('name="first_robot"', 'name="model_path_robot"'))
+    env = dict(rviz_env)
+    p = Proc(['roslaunch', 'firstbot_description', launch, 'model_path:=' + str(other), 'rviz:=false'],
+             env=env, log=str(tmp_path / 'launch.log'))
+    try:
+        out = subprocess.run(['rostopic', 'echo', '-n', '1', '/tf_static'], env=env, capture_output=True,
+                             text=True, timeout=120)
+        assert out.returncode == 0 and 'child_frame_id: "imu_link"' in out.stdout, out.stdout + p.output()[-2000:]
+        desc = subprocess.run(['rosparam', 'get', '/robot_description'], env=env, capture_output=True,
+                              text=True, timeout=60).stdout
+        assert 'model_path_robot' in desc, desc
+    finally:
+        p.stop()
