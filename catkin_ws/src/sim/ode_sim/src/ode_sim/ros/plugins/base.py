@@ -183,6 +183,17 @@ class Plugin:
                 return ''
         return ''
 
+    def _ns_tf_prefix(self):
+        """The `tf_prefix` parameter in the plugin's namespace only, not searched upwards
+        (ros::NodeHandle(ns).getParam("tf_prefix") of the range, block_laser and bumper
+        plugins)."""
+        if not self.ctx.io.live:        # no ROS (MemoryIO): no parameter server
+            return ''
+        try:
+            return str(rospy.get_param(self.topic('tf_prefix'), ''))
+        except Exception:               # master gone: no prefix
+            return ''
+
     def link(self, name):
         """The SimLink carrying `name` (a link, or a frame lumped into a link)."""
         if name in self.model.links:

@@ -103,15 +103,7 @@ class BlockLaser(Plugin):
         self.noise = float(self._info('gaussianNoise', 0.0, 'defaults to 0.0', float))
         self._info('hokuyoMinIntensity', 101.0, 'defaults to 101', float)
         self._info('updateRate', 0.0, 'defaults to 0', float)
-        prefix = ''
-        if ctx.io.live:
-            try:
-                key = ('/' + self.ns.strip('/') + '/tf_prefix') if self.ns.strip('/') \
-                    else '/tf_prefix'
-                prefix = str(rospy.get_param(key, ''))
-            except Exception:           # master gone
-                prefix = ''
-        self.frame_id = tf_resolve(prefix, frame)
+        self.frame_id = tf_resolve(self._ns_tf_prefix(), frame)
         self.topic_name = self.topic(topic) if topic else ''
         self.pub = (ctx.io.publisher(self.topic_name, PointCloud, queue_size=SENSOR_QUEUE)
                     if topic else None)

@@ -58,15 +58,6 @@ class BumperPlugin(Plugin):
         self.set_rate(sensor.update_rate)
         self.messages = 0
 
-    def _ns_tf_prefix(self):
-        """The `tf_prefix` parameter in the plugin's namespace (ros::NodeHandle::getParam)."""
-        if not self.ctx.io.live:
-            return ''
-        try:
-            return str(rospy.get_param(self.topic('tf_prefix'), ''))
-        except Exception:               # master gone: no prefix
-            return ''
-
     def next_update(self):
         if self.pub.get_num_connections() <= 0:
             return NO_WORK

@@ -62,7 +62,7 @@ class RangePlugin(Plugin):
                             'defaults to 0', rospy.loginfo)
         self.throttle = 1.0 / rate if rate > 0 else 0.0
         self.last_publish = 0.0
-        self.frame_id = tf_resolve(self._tf_prefix_param(), frame)
+        self.frame_id = tf_resolve(self._ns_tf_prefix(), frame)
         self.radiation = Range.ULTRASOUND if radiation == 'ultrasound' else Range.INFRARED
         self.topic_name = self.topic(topic) if topic else ''
         self.pub = (self.ctx.io.publisher(self.topic_name, Range, queue_size=SENSOR_QUEUE)
@@ -82,16 +82,6 @@ class RangePlugin(Plugin):
             log(line)
             return default
         return self.param(tag, default, float)
-
-    def _tf_prefix_param(self):
-        """The <ns>/tf_prefix parameter (NodeHandle(ns).getParam("tf_prefix"))."""
-        if not self.ctx.io.live:
-            return ''
-        try:
-            return str(rospy.get_param('/' + self.ns.strip('/') + '/tf_prefix'
-                                       if self.ns.strip('/') else '/tf_prefix', ''))
-        except Exception:               # master gone
-            return ''
 
     def measure(self):
         """The range now: the shortest ray, noise added below max_range, at most max_range."""
