@@ -24,6 +24,7 @@ import time
 
 import numpy as np
 
+import course_runtime
 from course_runtime import Proc, RosCore
 from space_scanner_bringup import metrics
 
@@ -211,17 +212,19 @@ def draw_path(map_yaml, truth, png):
 def printed_web_url(log, port, timeout=60.0):
     """The URL with its token that course_web_server printed in `log` (the page needs the
     token; it is new at each start and only ever printed there)."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
+    def url():
         try:
             with open(log, errors='replace') as f:
                 for line in f:
                     if 'course_web: open ' in line:
                         return line.split('course_web: open ', 1)[1].strip()
         except OSError:
-            pass
-        time.sleep(0.5)
-    return 'http://localhost:%d/?token=... (printed in the log once course_web starts)' % port
+            return None
+
+    try:
+        return course_runtime.wait_for(url, timeout, interval=0.5, what='the web URL')
+    except TimeoutError:
+        return 'http://localhost:%d/?token=... (printed in the log once course_web starts)' % port
 
 
 def main(argv=None):
