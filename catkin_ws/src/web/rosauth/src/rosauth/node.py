@@ -11,7 +11,7 @@ def main():
     from rosauth.srv import Authentication, AuthenticationResponse
     if not rospy.has_param('~secret_file_location'):
         rospy.logerr("Parameter 'secret_file_location' not found.")
-        sys.exit(1)
+        sys.exit(-1)     # the original's MISSING_PARAMETER: exit status 255
     path = rospy.get_param('~secret_file_location')
     delta = float(rospy.get_param('~allowed_time_delta', 5))
     secret = SecretFile(path)
