@@ -6,6 +6,7 @@ to /turtle1/* (globs) and with small limits: what lies outside the globs is refu
 flooding or garbage client is cut off while another keeps getting its messages."""
 import json
 import os
+import re
 import sys
 import threading
 import time
@@ -104,7 +105,8 @@ def test_roslibpy_without_auth_is_closed(bridge):
         assert got == []
     finally:
         ros.close()
-    wait_for(lambda: 'did not authenticate' in bridge.log(), 30, what='the refusal logged')
+    wait_for(lambda: re.search(r'Client \d+ did not authenticate\. Closing connection\.',
+                           bridge.log()), 30, what="the original's refusal line logged")
 
 
 def test_raw_client_first_op_not_auth_closed_with_status(bridge):

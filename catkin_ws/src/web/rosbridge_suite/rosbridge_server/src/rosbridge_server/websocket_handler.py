@@ -195,7 +195,7 @@ class RosbridgeWebSocket(WebSocketHandler):
     def _refuse(self, why):
         self.cut = True
         self.server.counters.add('auth_refused')
-        logger.warning('Client %s did not authenticate (%s). Closing connection.'
+        logger.warning('Client %s did not authenticate. Closing connection. (%s)'
                        % (self.client_id, why))
         self._close_with_status('authentication required: %s' % why)
 
