@@ -1,22 +1,10 @@
 """Every launch file of the package, with sim:=true and for the real robot, resolves: its
 includes and args, and every node's package and executable exist (roslaunch's own check, as
 rostest's roslaunch_check), and each names the nodes the diploma's files name."""
-import subprocess
-
 import pytest
 
-CHECK = r'''
-import sys, roslaunch.rlutil, roslaunch.config
-f = sys.argv[1]
-sys.argv[1:] = sys.argv[2:]          # roslaunch reads name:=value args from sys.argv
-err = roslaunch.rlutil.check_roslaunch(f)
-if err:
-    print('ERROR ' + err.replace('\n', ' | '))
-    sys.exit(1)
-cfg = roslaunch.config.load_config_default([f], 11311, verbose=False)
-for n in cfg.nodes:
-    print('NODE %s %s %s' % (n.package, n.type, (n.namespace or '/') + n.name))
-'''
+from course_testing.launch_check import check_launch
+
 
 DIPLOMA_NODES = {
     'robot_config.launch': {('controller_manager', 'spawner'), ('robot_state_publisher', 'robot_state_publisher'),
@@ -32,10 +20,9 @@ SIM_ONLY = {('gazebo_ros', 'spawn_model')}
 def nodes(launch, args):
     import rospkg
     path = '%s/launch/%s' % (rospkg.RosPack().get_path('space_scanner_bringup'), launch)
-    r = subprocess.run(['/usr/bin/python3', '-c', CHECK, path] + args, capture_output=True, text=True,
-                       timeout=120)
-    assert r.returncode == 0, '%s %s: %s %s' % (launch, ' '.join(args), r.stdout[-2000:], r.stderr[-2000:])
-    return {tuple(line.split()[1:3]) for line in r.stdout.splitlines() if line.startswith('NODE ')}
+    err, found = check_launch(path, args, timeout=120)
+    assert err is None, '%s %s: %s' % (launch, ' '.join(args), err)
+    return {(pkg, exe) for pkg, exe, _ in found}
 
 
 @pytest.mark.parametrize('launch', sorted(DIPLOMA_NODES))

@@ -12,6 +12,8 @@ import subprocess
 
 import pytest
 
+from course_testing.launch_check import check_launch
+
 README = os.path.join(os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), 'README.md')
 
 # every package path, launch command and node of the diploma's listings (figures 1.7, 1.8, 1.9,
@@ -50,17 +52,6 @@ DIPLOMA = [
     '$(find space_scanner_simulation)/rviz/config.rviz',
 ]
 
-CHECK = r'''
-import sys, roslaunch.rlutil, roslaunch.config
-f = sys.argv[1]
-sys.argv[1:] = sys.argv[2:]          # roslaunch reads name:=value args from sys.argv
-err = roslaunch.rlutil.check_roslaunch(f)
-if err:
-    print('ERROR ' + err.replace('\n', ' | '))
-    sys.exit(1)
-cfg = roslaunch.config.load_config_default([f], 11311, verbose=False)
-print('NODES %d' % len(cfg.nodes))
-'''
 
 
 def table():
@@ -106,11 +97,8 @@ def resolves(item):
             if not found:
                 return 'no launch file %s in %s' % (words[2], words[1])
             path = found[0]
-        r = subprocess.run(['/usr/bin/python3', '-c', CHECK, path] + words[3:], capture_output=True,
-                           text=True, timeout=180)
-        if r.returncode != 0 or 'NODES' not in r.stdout:
-            return '%s: %s %s' % (item, r.stdout[-1500:], r.stderr[-1500:])
-        return None
+        err, _ = check_launch(path, words[3:])
+        return None if err is None else '%s: %s' % (item, err)
     m = re.fullmatch(r'pkg="([^"]+)" type="([^"]+)"', item)
     if m:
         return None if find_node(*m.groups()) else 'no node %s in package %s' % (m.group(2), m.group(1))
