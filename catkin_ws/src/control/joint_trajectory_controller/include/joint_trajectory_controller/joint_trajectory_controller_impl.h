@@ -21,6 +21,20 @@ inline std::string controllerName(const ros::NodeHandle& nh)
   const std::size_t slash = ns.find_last_of('/');
   return slash == std::string::npos ? ns : ns.substr(slash + 1);
 }
+
+/// Stamp and desired/actual/error of a state message (the action feedback or the state topic's).
+template <class Msg, class State>
+void fillStateMsg(Msg& m, const ros::Time& time, const State& desired, const State& actual, const State& error)
+{
+  m.header.stamp = time;
+  m.desired.positions = desired.position;
+  m.desired.velocities = desired.velocity;
+  m.desired.accelerations = desired.acceleration;
+  m.actual.positions = actual.position;
+  m.actual.velocities = actual.velocity;
+  m.error.positions = error.position;
+  m.error.velocities = error.velocity;
+}
 }  // namespace internal
 
 template <class SegmentImpl, class HardwareInterface>
@@ -270,14 +284,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
     std::unique_lock<std::mutex> lock(feedback_mutex_, std::try_to_lock);
     if (lock.owns_lock())
     {
-      feedback_.header.stamp = time;
-      feedback_.desired.positions = desired_state_.position;
-      feedback_.desired.velocities = desired_state_.velocity;
-      feedback_.desired.accelerations = desired_state_.acceleration;
-      feedback_.actual.positions = current_state_.position;
-      feedback_.actual.velocities = current_state_.velocity;
-      feedback_.error.positions = state_error_.position;
-      feedback_.error.velocities = state_error_.velocity;
+      internal::fillStateMsg(feedback_, time, desired_state_, current_state_, state_error_);
       feedback_valid_ = true;
     }
   }
@@ -290,15 +297,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
       last_state_publish_time_ += ros::Duration(state_publish_period_);
       if (time - last_state_publish_time_ > ros::Duration(state_publish_period_) || time < last_state_publish_time_)
         last_state_publish_time_ = time;  // fell behind (or time jumped back): restart the schedule
-      control_msgs::JointTrajectoryControllerState& m = state_publisher_->msg_;
-      m.header.stamp = time;
-      m.desired.positions = desired_state_.position;
-      m.desired.velocities = desired_state_.velocity;
-      m.desired.accelerations = desired_state_.acceleration;
-      m.actual.positions = current_state_.position;
-      m.actual.velocities = current_state_.velocity;
-      m.error.positions = state_error_.position;
-      m.error.velocities = state_error_.velocity;
+      internal::fillStateMsg(state_publisher_->msg_, time, desired_state_, current_state_, state_error_);
       state_publisher_->unlockAndPublish();
     }
   }
