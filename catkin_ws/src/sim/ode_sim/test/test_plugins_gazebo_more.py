@@ -323,6 +323,9 @@ def test_planar_move_odometry_and_p3d_follow_the_model(roscore, tmp_path):
     turned = out['turned']
     assert turned['w'] == pytest.approx(0.5, abs=1e-3)
     assert out['odom_w'] == pytest.approx(0.5, abs=0.01)
+    # the original's WARN for each missing tag (here only <cmdTimeout>)
+    assert 'PlanarMovePlugin (ns = ) missing <cmdTimeout>, defaults to -1.000000' in log
+    assert 'PlanarMovePlugin (ns = ) missing <commandTopic>' not in log
 
 
 def test_force_accelerates_by_f_over_m(roscore, tmp_path):

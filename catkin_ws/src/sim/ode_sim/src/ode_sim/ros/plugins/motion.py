@@ -4,8 +4,8 @@ step, as the originals act at WorldUpdateBegin.
 
 planar_move (GazeboRosPlanarMove): `robotNamespace` (default root), `commandTopic` (cmd_vel),
 `odometryTopic` (odom), `odometryFrame` (odom), `robotBaseFrame` (base_footprint),
-`odometryRate` (20 Hz), `cmdTimeout` (-1: none); missing frame/rate tags log the original's
-WARN. Every step the model gets the commanded velocity: (linear.x, linear.y) turned by the
+`odometryRate` (20 Hz), `cmdTimeout` (-1: none); each missing tag but robotNamespace logs the
+original's WARN. Every step the model gets the commanded velocity: (linear.x, linear.y) turned by the
 model's yaw, z 0, and angular.z about z. Odometry (nav_msgs/Odometry, odom -> base frame, both
 tf::resolve'd with the namespace's tf_prefix) and its TF go out when more than 1/odometryRate
 s of sim time passed: the model's pose, the twist from the pose difference since the last
@@ -65,8 +65,8 @@ class PlanarMove(Plugin):
         super().__init__(ctx, model, desc, sensor)
         self.ns = _root_ns(self)
         self.label = 'PlanarMovePlugin'
-        self.command_topic = self.param('commandTopic', 'cmd_vel', warn=False).strip()
-        self.odometry_topic = self.param('odometryTopic', 'odom', warn=False).strip()
+        self.command_topic = self._warned('commandTopic', 'cmd_vel', '"cmd_vel"')
+        self.odometry_topic = self._warned('odometryTopic', 'odom', '"odom"')
         self.odometry_frame = self._warned('odometryFrame', 'odom', '"odom"')
         self.base_frame = self._warned('robotBaseFrame', 'base_footprint', '"base_footprint"')
         if self.has('odometryRate'):
@@ -75,7 +75,12 @@ class PlanarMove(Plugin):
             rospy.logwarn('PlanarMovePlugin (ns = %s) missing <odometryRate>, defaults to %f'
                           % (self.ns, 20.0))
             self.odometry_rate = 20.0
-        self.cmd_timeout = self.param('cmdTimeout', -1.0, float, warn=False)
+        if self.has('cmdTimeout'):
+            self.cmd_timeout = self.param('cmdTimeout', -1.0, float)
+        else:
+            rospy.logwarn('PlanarMovePlugin (ns = %s) missing <cmdTimeout>, defaults to %f'
+                          % (self.ns, -1.0))
+            self.cmd_timeout = -1.0
         prefix = self._tf_prefix()     # tf::getPrefixParam, searched upwards
         self.odom_frame_id = tf_resolve(prefix, self.odometry_frame)
         self.base_frame_id = tf_resolve(prefix, self.base_frame)
