@@ -56,23 +56,21 @@ def mode_range():
     out['near'] = [m.range, m.min_range, m.max_range, m.field_of_view, m.radiation_type,
                    m.header.frame_id]
     req = gm.ModelState(model_name='wall', reference_frame='world')
-    req.pose.position.x, req.pose.position.z = 1.2, 0.5
+    req.pose.position.z = 0.5
     req.pose.orientation.w = 1.0
-    svc('/gazebo/set_model_state', gs.SetModelState)(req)
-    t0 = sim_time()
-    while True:
-        m = latest('/sonar/range', Range)
-        if m.header.stamp.to_sec() > t0 + 0.1:
-            break
-    out['moved'] = m.range
-    req.pose.position.x = 20.0
-    svc('/gazebo/set_model_state', gs.SetModelState)(req)
-    t0 = sim_time()
-    while True:
-        m = latest('/sonar/range', Range)
-        if m.header.stamp.to_sec() > t0 + 0.1:
-            break
-    out['nothing'] = m.range
+
+    def range_with_wall_at(x):
+        """The sonar's range once the wall stands at x (a message measured 0.1 s after)."""
+        req.pose.position.x = x
+        svc('/gazebo/set_model_state', gs.SetModelState)(req)
+        t0 = sim_time()
+        while True:
+            m = latest('/sonar/range', Range)
+            if m.header.stamp.to_sec() > t0 + 0.1:
+                return m.range
+
+    out['moved'] = range_with_wall_at(1.2)
+    out['nothing'] = range_with_wall_at(20.0)
     ir = latest('/ir/range', Range)
     out['ir'] = [ir.radiation_type, ir.header.frame_id]
     return out
