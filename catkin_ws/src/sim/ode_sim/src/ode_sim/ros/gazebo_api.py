@@ -95,6 +95,15 @@ def light_attenuations(world_file):
     return out
 
 
+def _seen_from(ref, pose, lin, ang):
+    """(Pose msg, Twist msg) of a world-frame state as seen from a reference entity, `ref`
+    being GazeboApi._frame's (pose, (lin, ang)) of it: what GetModelState and GetLinkState
+    answer (velocities relative, expressed in the reference's axes)."""
+    rpose, (rlin, rang) = ref
+    inv = rpose.inverse()
+    return pose_msg(inv * pose), twist_msg(inv.rotate(lin - rlin), inv.rotate(ang - rang))
+
+
 class Job:
     """A wrench or joint effort of apply_body_wrench / apply_joint_effort, applied as
     gazebo_ros_api_plugin's schedulers do: before every step whose sim time t has
@@ -397,10 +406,7 @@ class GazeboApi:
                 return res
             pose = m.pose()
             lin, ang = m.twist()
-        rpose, (rlin, rang) = ref
-        inv = rpose.inverse()
-        res.pose = pose_msg(inv * pose)
-        res.twist = twist_msg(inv.rotate(lin - rlin), inv.rotate(ang - rang))
+        res.pose, res.twist = _seen_from(ref, pose, lin, ang)
         res.success = True
         res.status_message = 'GetModelState: got properties'
         return res
@@ -465,11 +471,8 @@ class GazeboApi:
                 return res
             pose = link.pose()
             lin, ang = link.velocity()
-        rpose, (rlin, rang) = ref
-        inv = rpose.inverse()
         res.link_state.link_name = req.link_name
-        res.link_state.pose = pose_msg(inv * pose)
-        res.link_state.twist = twist_msg(inv.rotate(lin - rlin), inv.rotate(ang - rang))
+        res.link_state.pose, res.link_state.twist = _seen_from(ref, pose, lin, ang)
         res.link_state.reference_frame = req.reference_frame
         res.success = True
         res.status_message = 'GetLinkState: got state'
