@@ -182,6 +182,7 @@ class JointTrajectoryControllerTest(unittest.TestCase):
     def test_joint_reordering(self):
         state, _ = self.run_goal(goal_of(trajectory(['j2', 'j1'], [point([0.5, -0.25], 1.0)])))
         self.assertEqual(GoalStatus.SUCCEEDED, state)
+        self.wait_wall('stop', self.stopped)  # the state message of the last sample may still be in flight
         s = self.state()
         self.assertAlmostEqual(-0.25, s.desired.positions[0], delta=EPS)
         self.assertAlmostEqual(0.5, s.desired.positions[1], delta=EPS)
