@@ -310,10 +310,12 @@ class JointTrajectoryControllerTest(unittest.TestCase):
     def test_effort_and_velocity_reach_goals(self):
         state, result = self.run_goal(goal_of(trajectory(['e1'], [point([0.8], 1.5)])), 'eff_controller')
         self.assertEqual(GoalStatus.SUCCEEDED, state)
+        self.wait_wall('eff_controller stopped', lambda: self.stopped('eff_controller'))
         self.assertAlmostEqual(0.8, self.state('eff_controller').actual.positions[0], delta=0.03)
         self.home('eff_controller', ('e1',))
         state, _ = self.run_goal(goal_of(trajectory(['v1', 'v2'], [point([0.5, -0.5], 1.5)])), 'vel_controller')
         self.assertEqual(GoalStatus.SUCCEEDED, state)
+        self.wait_wall('vel_controller stopped', lambda: self.stopped('vel_controller'))
         s = self.state('vel_controller')
         self.assertAlmostEqual(0.5, s.actual.positions[0], delta=0.03)
         self.assertAlmostEqual(-0.5, s.actual.positions[1], delta=0.03)
@@ -324,6 +326,7 @@ class JointTrajectoryControllerTest(unittest.TestCase):
         self.assertEqual(GoalStatus.SUCCEEDED, state)
         state, _ = self.run_goal(goal_of(trajectory(['v2'], [point([-0.4], 1.0)])), 'vel_controller')
         self.assertEqual(GoalStatus.SUCCEEDED, state)
+        self.wait_wall('vel_controller stopped', lambda: self.stopped('vel_controller'))
         s = self.state('vel_controller')
         self.assertAlmostEqual(0.3, s.desired.positions[0], delta=1e-6)  # v1 kept its trajectory
         self.assertAlmostEqual(-0.4, s.desired.positions[1], delta=EPS)
