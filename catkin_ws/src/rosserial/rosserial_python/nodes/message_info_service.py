@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """rosrun rosserial_python message_info_service.py: the services `message_info`
 (rosserial_msgs/RequestMessageInfo: type -> md5, definition) and `service_info`
-(rosserial_msgs/RequestServiceInfo: service type -> service/request/response md5) that the C++
-rosserial_server uses to advertise the types a device declares."""
+(rosserial_msgs/RequestServiceInfo: service type -> service/request/response md5), as the
+original's. rosserial_server's launch files start it as the original's do, but this repository's
+C++ rosserial_server looks the types up itself (embedded Python, msg_lookup.cpp) and never calls it."""
 import rospy
 from rosserial_msgs.srv import (RequestMessageInfo, RequestMessageInfoResponse,
                                 RequestServiceInfo, RequestServiceInfoResponse)
