@@ -37,7 +37,31 @@ WALLS_FOUND_MIN = 0.85
 FALSE_OCCUPIED_MAX = 0.03
 
 
-class SlamOfficeTest(unittest.TestCase):
+class SimDriving:
+    """wait for a condition (wall-time hang guard) and drive cmd_vel for sim seconds; shared with
+    check_slam_replay.py (with its own wall_timeout)."""
+    wall_timeout = WALL_TIMEOUT
+
+    def wait(self, cond, what, timeout=None):
+        timeout = self.wall_timeout if timeout is None else timeout
+        end = time.monotonic() + timeout
+        while not cond():
+            if rospy.is_shutdown() or time.monotonic() > end:
+                self.fail('timed out (%.0f s wall) waiting for %s' % (timeout, what))
+            time.sleep(0.05)
+
+    def drive(self, pub, vx, wz, seconds):
+        cmd = Twist()
+        cmd.linear.x, cmd.angular.z = vx, wz
+        t_end = rospy.Time.now().to_sec() + seconds
+        end = time.monotonic() + self.wall_timeout
+        while rospy.Time.now().to_sec() < t_end:
+            self.assertLess(time.monotonic(), end, 'sim time stalled while driving')
+            pub.publish(cmd)
+            rospy.sleep(0.02)
+
+
+class SlamOfficeTest(SimDriving, unittest.TestCase):
     def setUp(self):
         self.lock = threading.Lock()
         self.map = None
@@ -68,23 +92,6 @@ class SlamOfficeTest(unittest.TestCase):
 
     def on_entropy(self, msg):
         self.entropy = msg.data
-
-    def wait(self, cond, what, timeout=WALL_TIMEOUT):
-        end = time.monotonic() + timeout
-        while not cond():
-            if rospy.is_shutdown() or time.monotonic() > end:
-                self.fail('timed out (%.0f s wall) waiting for %s' % (timeout, what))
-            time.sleep(0.05)
-
-    def drive(self, pub, vx, wz, seconds):
-        cmd = Twist()
-        cmd.linear.x, cmd.angular.z = vx, wz
-        t_end = rospy.Time.now().to_sec() + seconds
-        end = time.monotonic() + WALL_TIMEOUT
-        while rospy.Time.now().to_sec() < t_end:
-            self.assertLess(time.monotonic(), end, 'sim time stalled while driving')
-            pub.publish(cmd)
-            rospy.sleep(0.02)
 
     def test_map_save_serve(self):
         pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=1)

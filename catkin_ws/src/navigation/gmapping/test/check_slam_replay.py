@@ -12,7 +12,6 @@ import subprocess
 import sys
 import tempfile
 import threading
-import time
 import unittest
 
 import numpy as np
@@ -26,7 +25,7 @@ from nav_msgs.msg import OccupancyGrid
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import office_walls  # noqa: E402
-from check_slam_office import SLAM_ARGS, WALLS_FOUND_MIN, FALSE_OCCUPIED_MAX  # noqa: E402
+from check_slam_office import SLAM_ARGS, WALLS_FOUND_MIN, FALSE_OCCUPIED_MAX, SimDriving  # noqa: E402
 
 WALL_TIMEOUT = 300.0
 SEED = 7
@@ -53,7 +52,9 @@ def read_pgm(path):
     return np.frombuffer(data[i:i + w * h], dtype=np.uint8).reshape(h, w)
 
 
-class SlamReplayTest(unittest.TestCase):
+class SlamReplayTest(SimDriving, unittest.TestCase):
+    wall_timeout = WALL_TIMEOUT
+
     def setUp(self):
         self.tmp = tempfile.mkdtemp(prefix='slam_replay_')
         self.procs = []
@@ -77,23 +78,6 @@ class SlamReplayTest(unittest.TestCase):
         p = subprocess.Popen(cmd, start_new_session=True, **kw)
         self.procs.append(p)
         return p
-
-    def wait(self, cond, what, timeout=WALL_TIMEOUT):
-        end = time.monotonic() + timeout
-        while not cond():
-            if rospy.is_shutdown() or time.monotonic() > end:
-                self.fail('timed out (%.0f s wall) waiting for %s' % (timeout, what))
-            time.sleep(0.05)
-
-    def drive(self, pub, vx, wz, seconds):
-        cmd = Twist()
-        cmd.linear.x, cmd.angular.z = vx, wz
-        t_end = rospy.Time.now().to_sec() + seconds
-        end = time.monotonic() + WALL_TIMEOUT
-        while rospy.Time.now().to_sec() < t_end:
-            self.assertLess(time.monotonic(), end, 'sim time stalled while driving')
-            pub.publish(cmd)
-            rospy.sleep(0.02)
 
     def record(self, bag):
         pub = rospy.Publisher('/diffbot_controller/cmd_vel', Twist, queue_size=1)
