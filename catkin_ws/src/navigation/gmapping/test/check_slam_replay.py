@@ -14,42 +14,20 @@ import tempfile
 import threading
 import unittest
 
-import numpy as np
 import rospy
 import rostest
 import tf2_ros
-import yaml
 from gazebo_msgs.srv import GetModelState
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import OccupancyGrid
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import office_walls  # noqa: E402
+from map_server import map_io  # noqa: E402
 from check_slam_office import SLAM_ARGS, WALLS_FOUND_MIN, FALSE_OCCUPIED_MAX, SimDriving  # noqa: E402
 
 WALL_TIMEOUT = 300.0
 SEED = 7
-
-
-def read_pgm(path):
-    with open(path, 'rb') as f:
-        data = f.read()
-    parts = []
-    i = 0
-    while len(parts) < 4:          # P5 width height maxval, comments skipped
-        while data[i:i + 1].isspace():
-            i += 1
-        if data[i:i + 1] == b'#':
-            i = data.index(b'\n', i) + 1
-            continue
-        j = i
-        while not data[j:j + 1].isspace():
-            j += 1
-        parts.append(data[i:j])
-        i = j
-    i += 1
-    w, h = int(parts[1]), int(parts[2])
-    return np.frombuffer(data[i:i + w * h], dtype=np.uint8).reshape(h, w)
 
 
 class SlamReplayTest(SimDriving, unittest.TestCase):
@@ -134,20 +112,15 @@ class SlamReplayTest(SimDriving, unittest.TestCase):
         self.assertEqual(tf.child_frame_id, 'odom')
         self.wait(lambda: 'run_a' in self.maps, 'a map on /run_a/map', 30)
         b, _ = self.replay(bag, 'run_b')
-        pa, pb = read_pgm(a + '.pgm'), read_pgm(b + '.pgm')
-        self.assertEqual(pa.shape, (400, 400))
-        self.assertTrue(np.array_equal(pa, pb), '%d cells differ between two replays with seed %d'
-                        % (int(np.sum(pa != pb)), SEED))
-        with open(a + '.yaml') as f:
-            meta = yaml.safe_load(f)
-        # map_saver: 0 occupied, 254 free, 205 unknown; rows from the top
-        grid = np.full(pa.shape, -1, dtype=np.int8)
-        grid[pa == 0] = 100
-        grid[pa == 254] = 0
-        grid = np.flipud(grid)
+        with open(a + '.pgm', 'rb') as fa, open(b + '.pgm', 'rb') as fb:
+            pa, pb = fa.read(), fb.read()
+        self.assertEqual(pa, pb, 'the two replays with seed %d saved different maps' % SEED)
+        m = map_io.load_map(a + '.yaml')     # map_server's reading: rows from the bottom
+        self.assertEqual(m.data.shape, (400, 400))
+        grid = m.data
         sdf, world = office_walls.office_paths()
         found, false_occ, seen = office_walls.map_quality(
-            grid, tuple(meta['origin'][:2]), meta['resolution'], office_walls.wall_boxes(sdf),
+            grid, tuple(m.origin[:2]), m.resolution, office_walls.wall_boxes(sdf),
             office_walls.furniture(world))
         rospy.loginfo('slam_replay: %d observed wall face points, %.1f %% marked within one cell, '
                       '%.2f %% false occupied', seen, 100 * found, 100 * false_occ)
