@@ -330,3 +330,23 @@ def test_one_tf_message_per_step_group_with_the_same_transforms():
     before = len(batch.pub.sent)
     SimNode.step_once(node, 20)
     assert len(batch.pub.sent) == before and batch.pending == []
+
+
+def planar_move(ctx, m, **params):
+    p = {k: str(v) for k, v in params.items()}
+    cls = plugins.lookup('libgazebo_ros_planar_move.so')
+    return cls(ctx, m, PluginDesc('pm', 'libgazebo_ros_planar_move.so', p))
+
+
+@pytest.mark.parametrize('timeout, held', [('-1', True), ('0', False), ('0.5', True)])
+def test_planar_move_cmd_timeout_as_the_original(timeout, held):
+    """cmdTimeout >= 0 drops a command older than it (0: a command lasts its own step only);
+    a negative one never drops it."""
+    pw, m, ctx = world()
+    pm = planar_move(ctx, m, cmdTimeout=timeout)
+    pm.on_cmd_vel(cmd(0.3, 0.2))
+    pm.before_step()
+    assert pm.cmd == (0.3, 0.0, 0.2)
+    pw.step()
+    pm.before_step()
+    assert pm.cmd == ((0.3, 0.0, 0.2) if held else (0.0, 0.0, 0.0))

@@ -4,8 +4,9 @@ step, as the originals act at WorldUpdateBegin.
 
 planar_move (GazeboRosPlanarMove): `robotNamespace` (default root), `commandTopic` (cmd_vel),
 `odometryTopic` (odom), `odometryFrame` (odom), `robotBaseFrame` (base_footprint),
-`odometryRate` (20 Hz), `cmdTimeout` (-1: none); each missing tag but robotNamespace logs the
-original's WARN. Every step the model gets the commanded velocity: (linear.x, linear.y) turned by the
+`odometryRate` (20 Hz), `cmdTimeout` (-1: none; 0 keeps a command for its own step); each
+missing tag but robotNamespace logs the original's WARN. Every step the model gets the
+commanded velocity: (linear.x, linear.y) turned by the
 model's yaw, z 0, and angular.z about z. Odometry (nav_msgs/Odometry, odom -> base frame, both
 tf::resolve'd with the namespace's tf_prefix) and its TF go out when more than 1/odometryRate
 s of sim time passed: the model's pose, the twist from the pose difference since the last
@@ -110,7 +111,7 @@ class PlanarMove(Plugin):
 
     def before_step(self):
         t = self.ctx.time
-        if self.cmd_timeout > 0 and t - self.last_cmd_time > self.cmd_timeout:
+        if self.cmd_timeout >= 0 and t - self.last_cmd_time > self.cmd_timeout:
             self.cmd = (0.0, 0.0, 0.0)
         x, y, rot = self.cmd
         yaw = yaw_of(self.model.pose().q)
