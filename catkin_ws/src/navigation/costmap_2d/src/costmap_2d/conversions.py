@@ -3,9 +3,9 @@
 import numpy as np
 from geometry_msgs.msg import Point32, PolygonStamped
 from map_msgs.msg import OccupancyGridUpdate
-from nav_msgs.msg import OccupancyGrid
 
 from course_runtime.geometry import yaw_of  # noqa: F401 (conversions.yaw_of)
+from course_runtime.occupancy import occupancy_grid
 
 from .costmap import cost_translation_table
 
@@ -76,17 +76,8 @@ def map_to_static_args(msg):
 
 
 def costmap_to_grid(costmap, frame, stamp):
-    msg = OccupancyGrid()
-    msg.header.frame_id = frame
-    msg.header.stamp = stamp
-    msg.info.resolution = costmap.resolution
-    msg.info.width = costmap.size_x
-    msg.info.height = costmap.size_y
-    msg.info.origin.position.x = costmap.origin_x
-    msg.info.origin.position.y = costmap.origin_y
-    msg.info.origin.orientation.w = 1.0
-    msg.data = _TABLE[costmap.data].ravel().tolist()
-    return msg
+    return occupancy_grid(_TABLE[costmap.data], costmap.resolution,
+                          (costmap.origin_x, costmap.origin_y), frame, stamp)
 
 
 def costmap_to_update(costmap, frame, stamp):

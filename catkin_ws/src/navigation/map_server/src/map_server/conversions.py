@@ -1,16 +1,16 @@
 """The one module between ROS messages and the core: Grid <-> nav_msgs/OccupancyGrid."""
 import numpy as np
-from geometry_msgs.msg import Quaternion
-from nav_msgs.msg import MapMetaData, OccupancyGrid
 from nav_msgs.srv import GetMap, GetMapRequest, GetMapResponse
 from rospy.numpy_msg import numpy_msg
 
-from course_runtime.geometry import yaw_of, yaw_quaternion
+from course_runtime.geometry import yaw_of
+from course_runtime.occupancy import NumpyOccupancyGrid, map_metadata, occupancy_grid
 from map_server.grid import Grid
 
+__all__ = ['NumpyOccupancyGrid', 'NumpyGetMapResponse', 'NumpyGetMap', 'grid_to_msg',
+           'grid_metadata', 'msg_to_grid']
 
-# int8[] maps of millions of cells: serialise them from NumPy in one copy (same md5 and wire format)
-NumpyOccupancyGrid = numpy_msg(OccupancyGrid)
+# the map of the GetMap service serialises from NumPy like the topic's (same md5 and wire format)
 NumpyGetMapResponse = numpy_msg(GetMapResponse)
 
 
@@ -24,22 +24,12 @@ class NumpyGetMap(object):
 
 def grid_to_msg(grid, frame_id, stamp):
     """Grid -> OccupancyGrid (header stamped, info.map_load_time = stamp); data is an int8 array."""
-    msg = NumpyOccupancyGrid()
-    msg.header.frame_id = frame_id
-    msg.header.stamp = stamp
-    msg.info = grid_metadata(grid, stamp)
-    msg.data = np.ascontiguousarray(grid.data, dtype=np.int8).ravel()
-    return msg
+    return occupancy_grid(grid.data, grid.resolution, grid.origin, frame_id, stamp,
+                          load_time=stamp, as_array=True)
 
 
 def grid_metadata(grid, stamp):
-    info = MapMetaData()
-    info.map_load_time = stamp
-    info.resolution = grid.resolution
-    info.width, info.height = grid.width, grid.height
-    info.origin.position.x, info.origin.position.y = grid.origin[0], grid.origin[1]
-    info.origin.orientation = Quaternion(*yaw_quaternion(grid.origin[2]))
-    return info
+    return map_metadata(grid.resolution, (grid.height, grid.width), grid.origin, stamp)
 
 
 def msg_to_grid(msg):

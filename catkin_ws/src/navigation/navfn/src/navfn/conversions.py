@@ -2,7 +2,9 @@
 import numpy as np
 import rospy
 from geometry_msgs.msg import PoseStamped, Quaternion
-from nav_msgs.msg import OccupancyGrid, Path
+from nav_msgs.msg import Path
+
+from course_runtime.occupancy import occupancy_grid
 
 
 def frame(msg):
@@ -28,17 +30,8 @@ def path(poses, frame_id):
 
 
 def potential_to_grid(pot, pot_high, res, ox, oy, frame_id):
-    msg = OccupancyGrid()
-    msg.header.frame_id = frame_id
-    msg.header.stamp = rospy.Time.now()
-    msg.info.resolution = res
-    msg.info.height, msg.info.width = pot.shape
-    msg.info.origin.position.x = ox
-    msg.info.origin.position.y = oy
-    msg.info.origin.orientation.w = 1.0
     finite = pot < pot_high
     top = pot[finite].max() if finite.any() else 1.0
     vals = np.full(pot.shape, -1, dtype=np.int8)
     vals[finite] = (pot[finite] * 99.0 / max(top, 1e-9)).astype(np.int8)
-    msg.data = vals.ravel().tolist()
-    return msg
+    return occupancy_grid(vals, res, (ox, oy), frame_id, rospy.Time.now())

@@ -130,19 +130,10 @@ def world_map(world_file, resolution=0.05):
 
 def occupancy_grid(world_file, resolution=0.05, frame='map'):
     """nav_msgs/OccupancyGrid of the world (imports rospy messages lazily)."""
-    from nav_msgs.msg import OccupancyGrid
     import rospy
+    from course_runtime.occupancy import occupancy_grid as build
     values, ox, oy = world_map(world_file, resolution)
-    msg = OccupancyGrid()
-    msg.header.frame_id = frame
-    msg.header.stamp = rospy.Time.now()
-    msg.info.resolution = resolution
-    msg.info.height, msg.info.width = values.shape
-    msg.info.origin.position.x = ox
-    msg.info.origin.position.y = oy
-    msg.info.origin.orientation.w = 1.0
-    msg.data = values.ravel().tolist()
-    return msg
+    return build(values, resolution, (ox, oy), frame, rospy.Time.now())
 
 
 if __name__ == '__main__':
