@@ -2,9 +2,10 @@
 LaserData, poses <-> messages."""
 
 import numpy as np
-from geometry_msgs.msg import Pose, PoseArray, PoseWithCovarianceStamped, Quaternion, TransformStamped
+from geometry_msgs.msg import Pose, PoseArray, PoseWithCovarianceStamped, Quaternion
 
 from course_runtime.geometry import yaw_of, yaw_quaternion
+from course_runtime.transforms import transform_stamped
 
 from .map import Map
 from .sensors import LaserData
@@ -102,10 +103,6 @@ def pose_array(poses, stamp, frame_id):
 
 
 def transform(pose, stamp, parent, child):
-    t = TransformStamped()
-    t.header.stamp = stamp
-    t.header.frame_id = parent
-    t.child_frame_id = child
-    t.transform.translation.x, t.transform.translation.y = float(pose[0]), float(pose[1])
-    t.transform.rotation = quaternion(float(pose[2]))
-    return t
+    """(x, y, yaw) pose -> TransformStamped parent -> child."""
+    return transform_stamped(stamp, parent, child, (pose[0], pose[1], 0.0),
+                             yaw_quaternion(float(pose[2])))
