@@ -237,3 +237,29 @@ def test_set_properties_rejects_a_non_positive_step_and_sets_gravity():
     m = pw.add_model(box(z=20.0))
     pw.step(1000)
     assert 20.0 - m.pose().p[2] == pytest.approx(0.5, rel=0.01)
+
+
+@pytest.mark.parametrize('core', ['compiled', 'python'])
+def test_a_static_model_moves_with_its_geoms(core):
+    """set_pose on a static model (Gazebo's SetWorldPose; the window's move tool) re-places its
+    geoms: a ray finds the moved table, a box dropped there lands on it."""
+    from ode_sim.engine.raycast import RayCaster
+    pw = PhysicsWorld(Physics(), core=core)
+    pw.add_model(ground())
+    table = box('table', pose=Pose((5, 0, 0.25)), size=(2, 2, 0.5))
+    table.static = True
+    t = pw.add_model(table)
+    b = pw.add_model(box('b', z=1.0, size=(0.2, 0.2, 0.2)))
+    b.set_pose(Pose((0, 0, 0.1)))
+    pw.step(2000)                               # settles, and may fall asleep
+    version = pw.version
+    t.set_pose(Pose((0, 0, 0.15)))              # under the box: it must be pushed up / rest on it
+    assert pw.version != version
+    assert np.allclose(t.pose().p, (0, 0, 0.15))
+    assert np.allclose(t.links['link'].pose().p, (0, 0, 0.15))
+    rc = RayCaster(pw.collision_shapes(), core=core)
+    d = rc.cast(np.array([[0.0, -3.0, 0.2]]), np.array([[0.0, 1.0, 0.0]]), 10.0)
+    assert float(np.ravel(d[0] if isinstance(d, tuple) else d)[0]) == pytest.approx(2.0, abs=1e-6)
+    b.set_pose(Pose((0, 0, 0.8)))
+    pw.step(2000)
+    assert b.pose().p[2] == pytest.approx(0.4 + 0.1, abs=0.01)  # on the table's top at 0.4

@@ -323,8 +323,10 @@ class SimModel:
                 b.enable()
 
     def set_pose(self, pose):
-        """Move the whole model rigidly so that its pose becomes `pose`."""
+        """Move the whole model rigidly so that its pose becomes `pose` (a static one too, as
+        Gazebo's Model::SetWorldPose: its geoms are re-placed in the static space)."""
         if self.static:
+            self._move_static(pose * self.pose().inverse())
             return
         self.wake()
         delta = pose * self.pose().inverse()
@@ -336,6 +338,16 @@ class SimModel:
             b.setPosition(tuple(bp.p))
             b.setQuaternion(ode_q(bp.q))
             b.enable()
+
+    def _move_static(self, delta):
+        """Re-place every link and geom of a static model by `delta` (a world-frame Pose);
+        the world's version bumps so ray casters and renderers re-pose their static shapes,
+        and every dynamic model wakes (a sleeping one stops colliding with the static world)."""
+        for link in self.links.values():
+            link._static_pose = delta * link._static_pose
+            for geom in link.geoms:
+                _place_static_geom(geom, link._static_pose * geom.shape.pose)
+        self.world.static_moved()
 
     def set_twist(self, linear, angular):
         """Give every body the rigid-body velocity of the model frame moving at (linear, angular)."""
@@ -411,3 +423,18 @@ def forward_kinematics(desc, q):
             motion[j.child] = motion[parent] * local
             stack.append(j.child)
     return motion
+
+
+def _place_static_geom(geom, world):
+    """A bodiless geom placed at `world` (its collision's pose in the world): a plane gets new
+    parameters (normal, offset), the compiled core's trimesh its pose, any other ODE geom its
+    position and orientation."""
+    if isinstance(geom, ode.GeomPlane):
+        n = world.rotate(np.asarray(geom.shape.geometry.normal, dtype=float))
+        n = n / np.linalg.norm(n)
+        geom.setParams(tuple(float(v) for v in n), float(np.dot(n, world.p)))
+    elif isinstance(geom, ode.GeomObject):
+        geom.setPosition(tuple(float(v) for v in world.p))
+        geom.setQuaternion(ode_q(world.q))
+    else:
+        geom.setPose(world.p, ode_q(world.q))

@@ -312,6 +312,14 @@ class PhysicsWorld:
         """Robots (spawned from URDF, driven by plugins) stay awake; other models may sleep."""
         return not desc.urdf and desc.allow_auto_disable
 
+    def static_moved(self):
+        """A static model was moved (SimModel.set_pose): shapes changed for the ray casters and
+        renderers, and sleeping models must collide with the static world again."""
+        self._version += 1
+        for m in self.models.values():
+            if not m.static:
+                m.wake()
+
     def _rouse(self, sp):
         self._loop.rouse(sp)
 
