@@ -1,8 +1,8 @@
 """ctypes binding of the C++ hot loops (libgmapping_grid_core.so, include/gmapping/grid_core.h)."""
 import ctypes
-import os
 
 import numpy as np
+from nav_core import native
 
 LIBRARY = 'libgmapping_grid_core.so'
 
@@ -32,38 +32,14 @@ class GmMatcherParams(ctypes.Structure):
                 ('null_likelihood', ctypes.c_double), ('minimum_score', ctypes.c_double)]
 
 
-def _candidates():
-    yield LIBRARY                                   # LD_LIBRARY_PATH (catkin devel/lib, install lib)
-    here = os.path.dirname(os.path.abspath(__file__))
-    # source tree: catkin_ws/src/navigation/gmapping/src/gmapping -> catkin_ws/devel/lib
-    for up in range(3, 7):
-        root = os.path.abspath(os.path.join(here, *['..'] * up))
-        yield os.path.join(root, 'devel', 'lib', LIBRARY)
-
-
 def _load():
-    errors = []
-    for path in _candidates():
-        try:
-            lib = ctypes.CDLL(path)
-            break
-        except OSError as e:
-            errors.append(str(e))
-    else:
-        raise ImportError('gmapping: cannot load %s (build the workspace: scripts/build.sh): %s'
-                          % (LIBRARY, errors[0]))
-    lib.gm_integrate.argtypes = [ctypes.POINTER(GmGrids), _d, ctypes.POINTER(GmScan)]
-    lib.gm_integrate.restype = ctypes.c_int
-    lib.gm_score.argtypes = [ctypes.POINTER(GmGrids), ctypes.c_int, _d, ctypes.POINTER(GmScan),
-                             ctypes.POINTER(GmMatcherParams)]
-    lib.gm_score.restype = ctypes.c_double
-    lib.gm_optimize.argtypes = [ctypes.POINTER(GmGrids), _d, ctypes.POINTER(GmScan),
-                                ctypes.POINTER(GmMatcherParams), _d, _d, _d]
-    lib.gm_optimize.restype = None
-    lib.gm_likelihood_and_score.argtypes = [ctypes.POINTER(GmGrids), ctypes.c_int, _d, ctypes.POINTER(GmScan),
-                                            ctypes.POINTER(GmMatcherParams), _d, _d]
-    lib.gm_likelihood_and_score.restype = None
-    return lib
+    g, s, m = ctypes.POINTER(GmGrids), ctypes.POINTER(GmScan), ctypes.POINTER(GmMatcherParams)
+    return native.load_library(LIBRARY, 'gmapping', {
+        'gm_integrate': (ctypes.c_int, [g, _d, s]),
+        'gm_score': (ctypes.c_double, [g, ctypes.c_int, _d, s, m]),
+        'gm_optimize': (None, [g, _d, s, m, _d, _d, _d]),
+        'gm_likelihood_and_score': (None, [g, ctypes.c_int, _d, s, m, _d, _d]),
+    })
 
 
 _lib = _load()
