@@ -18,7 +18,9 @@
  * Side channel: stdout lines (events, flushed) and stdin commands, one a line:
  *   distance CM      set the ultrasonic distance (cm)
  *   load L R         load on the left/right wheel, 0..1 of the motor's torque
- *   garbage N        write N pseudo-random bytes to the host (fault injection)
+ *   garbage N [SEED] N pseudo-random bytes to the host, spliced into the MCU's next rosserial
+ *                    frame (fault injection; bytes and place fixed by SEED, default: the
+ *                    number of garbage commands so far); reported as "garbage N <ms>"
  *   reset            reset the MCU (fault injection; the sketch starts over)
  *   quit             stop
  * Time: simulated time is paced to the wall clock times --speed (1 = real time, default;
@@ -76,13 +78,61 @@ static void on_signal(int sig) { (void)sig; stop_requested = 1; }
 
 /* ---- UART0 <-> pty ---------------------------------------------------------------------- */
 
+/* Fault injection ("garbage N [SEED]"): N bytes from rand_r(SEED) (default: the number of
+   garbage commands so far), spliced into the MCU's next rosserial frame after its first
+   garbage_at bytes (2..7, from the same seed: inside the frame's header) - so what the host
+   gets is fixed by the seed and the stream, not by when the command arrived on the wall
+   clock. A line silent for 100 ms of simulated time gets the bytes then. */
+static unsigned char garbage_buf[4096];
+static size_t garbage_len;
+static int garbage_at;              /* bytes of the next frame before the garbage; 0 = none */
+static unsigned garbage_count;
+static uint64_t garbage_deadline;   /* cycle */
+static int frame_pos = -1;          /* bytes of the current frame sent so far, -1 = between */
+static unsigned char last_out;
+
+static void emit(const unsigned char *p, size_t n)
+{
+  /* nobody listening and the pty buffer full: the bytes are lost, as on a real line */
+  if (write(pty_master, p, n) < 0 && errno != EAGAIN && errno != EIO)
+    perror("simulate: pty write");
+}
+
+static void garbage_flush(void)
+{
+  emit(garbage_buf, garbage_len);
+  printf("garbage %d %.1f\n", (int)garbage_len, sim_ms());
+  fflush(stdout);
+  garbage_len = 0;
+  garbage_at = 0;
+}
+
+static void garbage_queue(int n, unsigned seed)
+{
+  if (n < 0)
+    n = 0;
+  if (n > (int)sizeof garbage_buf)
+    n = (int)sizeof garbage_buf;
+  for (int i = 0; i < n; i++)
+    garbage_buf[i] = (unsigned char)(rand_r(&seed) >> 7);
+  garbage_len = (size_t)n;
+  garbage_at = 2 + (int)(rand_r(&seed) % 6);
+  garbage_deadline = avr->cycle + F_CPU / 10;
+  frame_pos = -1;                   /* the next frame, not the rest of the current one */
+}
+
 static void uart_out_hook(struct avr_irq_t *irq, uint32_t value, void *param)
 {
   (void)irq; (void)param;
   unsigned char b = (unsigned char)value;
-  /* nobody listening and the pty buffer full: the byte is lost, as on a real line */
-  if (write(pty_master, &b, 1) < 0 && errno != EAGAIN && errno != EIO)
-    perror("simulate: pty write");
+  if (last_out == 0xFF && b == 0xFE)      /* rosserial's sync flag + protocol version 2 */
+    frame_pos = 1;
+  if (frame_pos >= 0)
+    frame_pos++;
+  last_out = b;
+  emit(&b, 1);
+  if (garbage_at && frame_pos == garbage_at)
+    garbage_flush();
 }
 
 static void uart_xon_hook(struct avr_irq_t *irq, uint32_t value, void *param)
@@ -340,15 +390,11 @@ static void handle_command(const char *line)
   if (sscanf(line, "distance %lf", &v) == 1) {
     distance_cm = v;
   } else if (sscanf(line, "garbage %lf", &v) == 1) {
-    /* fault injection: v pseudo-random bytes on the line to the host */
-    unsigned seed = (unsigned)avr->cycle;
-    for (int i = 0; i < (int)v; i++) {
-      unsigned char b = (unsigned char)(rand_r(&seed) >> 7);
-      if (write(pty_master, &b, 1) < 0)
-        break;
-    }
-    printf("garbage %d %.1f\n", (int)v, sim_ms());
-    fflush(stdout);
+    /* fault injection: v pseudo-random bytes into the next frame to the host (see above) */
+    unsigned seed;
+    if (sscanf(line, "garbage %*f %u", &seed) != 1)
+      seed = ++garbage_count;
+    garbage_queue((int)v, seed);
   } else if (strncmp(line, "reset", 5) == 0) {
     /* fault injection: the MCU resets (as by its reset button); the sketch starts over */
     avr_reset(avr);
@@ -493,6 +539,8 @@ int main(int argc, char **argv)
       continue;
     next_check = avr->cycle + F_CPU / 2000;   /* everything else every 0.5 ms */
     poll_stdin();
+    if (garbage_at && avr->cycle >= garbage_deadline)
+      garbage_flush();
     drive_step();
     if (speed > 0) {
       double ahead = avr->cycle / (double)F_CPU / speed - (now_s() - t0);

@@ -86,6 +86,47 @@ def test_hello_world_chatter_survives_garbage_and_reset(bridge, elves):
     assert 'data: "hello world!"' in b.echo('/chatter')
 
 
+def _raw_stream(elf, delay, commands, after=1.5):
+    """The bytes the emulated Mega sends on its pty when `commands` reach the simulator
+    `delay` s (wall clock) after its start."""
+    import select
+    import tty
+    with harness.Simulation(elf) as sim:
+        fd = os.open(sim.pty, os.O_RDWR | os.O_NOCTTY)
+        tty.setraw(fd)
+        out, t0, sent = bytearray(), time.monotonic(), False
+        try:
+            while time.monotonic() - t0 < delay + after:
+                if not sent and time.monotonic() - t0 >= delay:
+                    for c in commands:
+                        sim.command(c)
+                    sent = True
+                if select.select([fd], [], [], 0.05)[0]:
+                    out += os.read(fd, 4096)
+        finally:
+            os.close(fd)
+        return bytes(out), sim.events_starting('garbage')
+
+
+def test_garbage_is_fixed_by_the_seed_not_the_clock(elves):
+    """`garbage N SEED`: the same N bytes (glibc's rand_r from SEED) at the same place of the
+    next frame (after 2..7 of its bytes, from the same seed) whenever the command arrives:
+    here the frame the sketch sends after a reset, commands sent 0.2 s or 0.9 s in."""
+    import ctypes
+    libc = ctypes.CDLL(None)
+    seed = ctypes.c_uint(7)
+    junk = bytes((libc.rand_r(ctypes.byref(seed)) >> 7) & 0xFF for _ in range(16))
+    at = 2 + libc.rand_r(ctypes.byref(seed)) % 6
+    # hello_world's first frame after a start: a topic request (FF FE 00 00 FF 00 00 FF)
+    frame = bytes.fromhex('fffe0000ff0000ff')
+    spliced = frame[:at] + junk + frame[at:]
+    for delay in (0.2, 0.9):
+        out, events = _raw_stream(elves['hello_world'], delay, ['garbage 16 7', 'reset'])
+        assert len(events) == 1 and events[0].startswith('garbage 16 '), events
+        assert out.endswith(spliced), 'commands at %.1f s: %s' % (delay, out.hex())
+        assert out.count(junk) == 1
+
+
 @pytest.mark.full   # gate budget: hello_world and ultrasound run in make test
 def test_blink_toggles_the_led(bridge, elves, core):
     b = bridge(elves['blink'])
