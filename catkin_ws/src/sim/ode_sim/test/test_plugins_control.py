@@ -57,6 +57,19 @@ class FakeSub:
         pass
 
 
+class LeavingSub(FakeSub):
+    """A command subscriber whose publisher leaves after `reads` connection checks: the
+    moment is fixed by the plugin's own checks, not by a timer on the wall clock."""
+
+    def __init__(self, reads):
+        super().__init__(1)
+        self.reads = reads
+
+    def get_num_connections(self):
+        self.reads -= 1
+        return 1 if self.reads >= 0 else 0
+
+
 def bridge(interfaces, lockstep=False, wall=None, io=None, **params):
     pw = PhysicsWorld(Physics())
     m = pw.add_model(rig(interfaces))
@@ -264,8 +277,7 @@ def test_lockstep_stops_waiting_when_the_controller_leaves(monkeypatch):
     monkeypatch.setattr(rospy, 'logwarn', lambda m, *a: warnings.append(m % a if a else m))
     pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.01)
     plug.lockstep_timeout = 600.0                   # a test that hung here would say so
-    plug.cmd_sub = FakeSub(1)
-    threading.Timer(0.3, lambda: setattr(plug.cmd_sub, 'connections', 0)).start()
+    plug.cmd_sub = LeavingSub(2)                    # there when the wait starts, then gone
     run(pw, plug, 0.05)
     assert plug.waits == 1 and plug.timeouts == 0 and plug.synced == 0
     assert not [w for w in warnings if 'lockstep' in w]
