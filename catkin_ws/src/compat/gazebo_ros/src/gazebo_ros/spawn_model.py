@@ -86,31 +86,6 @@ def _resolve():
     return resolve
 
 
-def model_search_path(env=None, ode_sim_models=None):
-    """Directories searched for model://NAME, in the simulator's order: GAZEBO_MODEL_PATH,
-    ~/.gazebo/models, then ode_sim's model library (ode_sim's own unless given)."""
-    return _resolve().ModelPaths(env=env, library=ode_sim_models).roots
-
-
-def model_sdf_file(model_dir):
-    """The SDF file of a model directory (ode_sim's model.config rules). SpawnError when
-    model.config is broken or names a missing file."""
-    resolve = _resolve()
-    try:
-        return resolve.model_sdf_file(model_dir)
-    except resolve.ModelError as e:
-        raise SpawnError(str(e))
-
-
-def find_database_model(name, paths):
-    """Path of the SDF file of model://name, searching `paths` in order."""
-    model_dir = _resolve().ModelPaths.only(paths).find_model_dir(name)
-    if model_dir is None:
-        raise SpawnError('-database %s: model://%s is in none of: %s'
-                         % (name, name, ':'.join(paths) or '(no model paths)'))
-    return model_sdf_file(model_dir)
-
-
 def database_model_sdf(name, env=None):
     """Path of the SDF file of model://name as gzserver finds it for the original's -database:
     the model paths, then the model database (downloaded once into ~/.gazebo/models)."""
@@ -136,9 +111,10 @@ def read_file(path):
     return text
 
 
-def load_model_xml(args, get_param=None, stdin=None, model_paths=None):
+def load_model_xml(args, get_param=None, stdin=None, env=None):
     """The model XML named by the source argument. `get_param(name)` returns the parameter's
-    value or None; `stdin` is a file to read for -stdin; `model_paths` the -database path."""
+    value or None; `stdin` is a file to read for -stdin; `env` (default os.environ) the
+    environment -database searches with (GAZEBO_MODEL_PATH, HOME, GAZEBO_MODEL_DATABASE_URI)."""
     if args.file:
         return read_file(args.file)
     if args.param:
@@ -147,9 +123,7 @@ def load_model_xml(args, get_param=None, stdin=None, model_paths=None):
             raise SpawnError('Error: param %s does not exist or is empty' % args.param)
         return value
     if args.database:
-        if model_paths is not None:
-            return read_file(find_database_model(args.database, model_paths))
-        return read_file(database_model_sdf(args.database))
+        return read_file(database_model_sdf(args.database, env))
     if args.stdin:
         text = (stdin if stdin is not None else sys.stdin).read()
         if not text.strip():
