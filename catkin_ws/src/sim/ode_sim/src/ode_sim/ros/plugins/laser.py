@@ -69,9 +69,12 @@ class LaserPlugin(Plugin):
         super().__init__(ctx, model, desc, sensor)
         if sensor is None or sensor.type not in self.sensor_types:
             raise self.error('must be inside a <sensor type="ray"> or <sensor type="gpu_ray">')
+        import numpy as np
         from ode_sim.engine.laser import LaserModel
         self.ns = sensor_namespace(self)
-        self.laser = LaserModel(sensor)
+        # seeded as the other sensors' noise (imu, gps, range, block_laser): a run's scans
+        # are the same whatever the machine's load
+        self.laser = LaserModel(sensor, rng=np.random.default_rng(0))
         if not self.has('frameName'):
             rospy.loginfo('%s: Laser plugin missing <frameName>, defaults to /world' % self.label)
         if not self.has('topicName'):
