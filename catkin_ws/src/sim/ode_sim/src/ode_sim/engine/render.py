@@ -8,10 +8,10 @@ any thread (they hand the GL part over and wait for it).
 Camera convention (Gazebo's): the camera frame looks along +X, +Z is up, +Y is left. The image
 is a pinhole projection with square pixels: focal length f = width / (2 tan(hfov / 2)) pixels,
 principal point exactly at the image centre (pixel-centre coordinates (width-1)/2,
-(height-1)/2 when pixel 0 is centred on 0), as Gazebo renders it. `camera_info_matrix` gives
-the K and P matrices that gazebo_ros_camera_utils publishes by default; note that those put
-cx, cy at (width+1)/2, (height+1)/2, one pixel right/down of the true centre — Gazebo's
-long-standing default, kept for compatibility.
+(height-1)/2 when pixel 0 is centred on 0), as Gazebo renders it. `camera_info_matrix`
+(engine/camera.py) gives the K and P matrices that gazebo_ros_camera_utils publishes by
+default; note that those put cx, cy at (width+1)/2, (height+1)/2, one pixel right/down of the
+true centre — Gazebo's long-standing default, kept for compatibility.
 
 Depth: distance along the optical axis (the camera's X) in metres, float32; +inf where nothing
 is hit or the surface is beyond `far` (also below `near`, things are clipped away). Gazebo's
@@ -41,6 +41,7 @@ import threading
 import numpy as np
 
 from ode_sim.description.model import ModelError
+from ode_sim.engine.camera import camera_info_matrix, focal_length  # noqa: F401 (re-exported)
 from ode_sim.engine.tessellate import tessellate, uv_of
 
 MAX_LIGHTS = 8
@@ -249,25 +250,6 @@ def gl_renderer():
         i = _context().info
         return '%s, OpenGL %s' % (i.get('GL_RENDERER', '?'), i.get('GL_VERSION', '?'))
     return _gl(info)
-
-
-def focal_length(width, hfov):
-    """Focal length in pixels for `width` pixels over the horizontal field of view `hfov`."""
-    return width / (2.0 * math.tan(hfov / 2.0))
-
-
-def camera_info_matrix(width, height, hfov, cx=None, cy=None, focal=None, hack_baseline=0.0):
-    """(K 3x3, P 3x4) as gazebo_ros_camera_utils publishes them in sensor_msgs/CameraInfo.
-
-    Defaults as the plugin's: focal (`focalLength` 0) = width / (2 tan(hfov/2)) for both axes,
-    cx (`Cx`) = (width + 1) / 2, cy (`Cy`) = (height + 1) / 2, P[0,3] = -focal * hackBaseline.
-    """
-    f = focal_length(width, hfov) if not focal else float(focal)
-    cx = (width + 1) / 2.0 if cx is None else float(cx)
-    cy = (height + 1) / 2.0 if cy is None else float(cy)
-    K = np.array([[f, 0.0, cx], [0.0, f, cy], [0.0, 0.0, 1.0]])
-    P = np.array([[f, 0.0, cx, -f * hack_baseline], [0.0, f, cy, 0.0], [0.0, 0.0, 1.0, 0.0]])
-    return K, P
 
 
 # camera frame (X forward, Y left, Z up) -> OpenGL eye frame (x right, y up, looking along -z)

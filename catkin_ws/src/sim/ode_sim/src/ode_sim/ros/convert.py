@@ -135,3 +135,58 @@ def contacts_state(points, stamp, frame):
         fill_vector(s.total_wrench.torque, total[3:])
         msg.states.append(s)
     return msg
+
+
+def image_msg(data, width, height, encoding, channels, depth, frame_id, stamp):
+    """sensor_msgs/Image of `data` (bytes): `channels` channels of `depth` bytes per pixel."""
+    from sensor_msgs.msg import Image
+    msg = Image()
+    msg.header.frame_id = frame_id
+    msg.header.stamp = stamp
+    msg.height, msg.width = height, width
+    msg.encoding = encoding
+    msg.is_bigendian = 0
+    msg.step = width * channels * depth
+    msg.data = data
+    return msg
+
+
+def camera_info_msg(width, height, K, P, D, frame_id, stamp):
+    """sensor_msgs/CameraInfo ("plumb_bob", R identity) as gazebo_ros_camera_utils fills it."""
+    from sensor_msgs.msg import CameraInfo
+    msg = CameraInfo()
+    msg.header.frame_id = frame_id
+    msg.header.stamp = stamp
+    msg.width, msg.height = width, height
+    msg.distortion_model = 'plumb_bob'
+    msg.D = list(D)
+    msg.K = [float(v) for v in np.asarray(K).ravel()]
+    msg.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
+    msg.P = [float(v) for v in np.asarray(P).ravel()]
+    return msg
+
+
+def depth_image_msg(depth, frame_id, stamp):
+    """A 32FC1 sensor_msgs/Image of an (h, w) depth array in metres."""
+    h, w = depth.shape
+    return image_msg(depth.astype('<f4').tobytes(), w, h, '32FC1', 1, 4, frame_id, stamp)
+
+
+def point_cloud_msg(depth, image_bytes, width, height, hfov, frame_id, stamp):
+    """Organized sensor_msgs/PointCloud2 from `depth` (already cut: NaN = no point) and the
+    published image bytes, as gazebo_ros_openni_kinect fills it (engine.camera.cloud_points)."""
+    from sensor_msgs.msg import PointCloud2, PointField
+    from ode_sim.engine.camera import CLOUD_FIELDS, CLOUD_POINT_STEP, cloud_points
+    data, dense = cloud_points(depth, image_bytes, width, height, hfov)
+    msg = PointCloud2()
+    msg.header.frame_id = frame_id
+    msg.header.stamp = stamp
+    msg.height, msg.width = height, width
+    msg.fields = [PointField(name, offset, PointField.FLOAT32, 1)
+                  for name, offset in CLOUD_FIELDS]
+    msg.is_bigendian = False
+    msg.point_step = CLOUD_POINT_STEP
+    msg.row_step = CLOUD_POINT_STEP * width
+    msg.data = data
+    msg.is_dense = dense
+    return msg

@@ -46,159 +46,22 @@ hands the frame over; the physics keeps stepping while the frame is rendered, co
 published (Gazebo renders on its own thread too). A new frame starts only when the previous one
 is done, so an update rate above what the renderer sustains yields as many frames as it can.
 `wait()` blocks until the frame in flight is published (tests); `sync = True` renders inline.
+
+The image, noise, encoding, depth-cut and point-cloud maths are ROS-free in engine/camera.py
+(CameraModel), the messages are built in ros/convert.py; this module wires them to topics.
 """
 import concurrent.futures
-import math
 import threading
 
-import numpy as np
 import rospy
-from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
+from sensor_msgs.msg import CameraInfo, Image, PointCloud2
 
+from ode_sim.description.model import ModelError
+from ode_sim.engine.camera import CameraModel, camera_info_matrix, cut_depth
+from ode_sim.ros.convert import (camera_info_msg, depth_image_msg, image_msg,
+                                 point_cloud_msg)
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.laser import sensor_frame_name, sensor_namespace, sensor_world_pose
-
-
-#: <image><format> -> (encoding, channels, bytes per channel)
-ENCODINGS = {
-    'L8': ('mono8', 1, 1),
-    'L16': ('mono16', 1, 2),
-    'R8G8B8': ('rgb8', 3, 1),
-    'B8G8R8': ('bgr8', 3, 1),
-    'R16G16B16': ('rgb16', 3, 2),
-    'BAYER_RGGB8': ('bayer_rggb8', 1, 1),
-    'BAYER_BGGR8': ('bayer_bggr8', 1, 1),
-    'BAYER_GBRG8': ('bayer_gbrg8', 1, 1),
-    'BAYER_GRBG8': ('bayer_grbg8', 1, 1),
-}
-
-# Bayer patterns: colour channel (0 R, 1 G, 2 B) at (row % 2, col % 2)
-_BAYER = {
-    'bayer_rggb8': ((0, 1), (1, 2)),
-    'bayer_bggr8': ((2, 1), (1, 0)),
-    'bayer_gbrg8': ((1, 2), (0, 1)),
-    'bayer_grbg8': ((1, 0), (2, 1)),
-}
-
-CLOUD_FIELDS = [PointField('x', 0, PointField.FLOAT32, 1),
-                PointField('y', 4, PointField.FLOAT32, 1),
-                PointField('z', 8, PointField.FLOAT32, 1),
-                PointField('rgb', 16, PointField.FLOAT32, 1)]
-CLOUD_POINT_STEP = 32
-
-
-def encoding_of(fmt):
-    """(encoding, channels, bytes per channel, known) for a Gazebo image format name."""
-    if fmt in ENCODINGS:
-        return ENCODINGS[fmt] + (True,)
-    return ('bgr8', 3, 1, False)
-
-
-def convert_image(rgb, encoding):
-    """An (h, w, 3) uint8 RGB array -> the bytes of an image in `encoding`."""
-    if encoding == 'rgb8':
-        return rgb.tobytes()
-    if encoding == 'bgr8':
-        return np.ascontiguousarray(rgb[:, :, ::-1]).tobytes()
-    if encoding == 'rgb16':
-        return (rgb.astype('<u2') * 257).tobytes()
-    if encoding in ('mono8', 'mono16'):
-        # Rec. 601 luma
-        y = rgb.astype(np.float32) @ np.array([0.299, 0.587, 0.114], dtype=np.float32)
-        if encoding == 'mono8':
-            return np.clip(np.rint(y), 0, 255).astype(np.uint8).tobytes()
-        return (np.clip(np.rint(y), 0, 255).astype('<u2') * 257).tobytes()
-    if encoding in _BAYER:
-        pat = _BAYER[encoding]
-        out = np.empty(rgb.shape[:2], dtype=np.uint8)
-        for r in (0, 1):
-            for c in (0, 1):
-                out[r::2, c::2] = rgb[r::2, c::2, pat[r][c]]
-        return out.tobytes()
-    raise ValueError('unknown encoding %r' % encoding)
-
-
-def add_noise(rgb, mean, stddev, rng):
-    """Gaussian pixel noise as Gazebo's camera noise (in [0, 1] colour units)."""
-    if stddev <= 0 and mean == 0:
-        return rgb
-    n = rng.normal(mean * 255.0, stddev * 255.0, size=rgb.shape)
-    return np.clip(rgb + n, 0, 255).astype(np.uint8)
-
-
-def image_message(data, width, height, encoding, channels, depth, frame_id, stamp):
-    msg = Image()
-    msg.header.frame_id = frame_id
-    msg.header.stamp = stamp
-    msg.height, msg.width = height, width
-    msg.encoding = encoding
-    msg.is_bigendian = 0
-    msg.step = width * channels * depth
-    msg.data = data
-    return msg
-
-
-def camera_info_message(width, height, K, P, D, frame_id, stamp):
-    msg = CameraInfo()
-    msg.header.frame_id = frame_id
-    msg.header.stamp = stamp
-    msg.width, msg.height = width, height
-    msg.distortion_model = 'plumb_bob'
-    msg.D = list(D)
-    msg.K = [float(v) for v in np.asarray(K).ravel()]
-    msg.R = [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
-    msg.P = [float(v) for v in np.asarray(P).ravel()]
-    return msg
-
-
-def cut_depth(depth, cutoff, cutoff_max=None):
-    """Depth (h, w) float32 with +inf for no return -> NaN outside (cutoff, cutoff_max)."""
-    d = depth.astype(np.float32, copy=True)
-    bad = ~(d > cutoff)
-    if cutoff_max is not None:
-        bad |= ~(d < cutoff_max)
-    d[bad] = np.nan
-    return d
-
-
-def depth_image_message(depth, frame_id, stamp):
-    h, w = depth.shape
-    return image_message(depth.astype('<f4').tobytes(), w, h, '32FC1', 1, 4, frame_id, stamp)
-
-
-def point_cloud_message(depth, image_bytes, width, height, hfov, frame_id, stamp):
-    """Organized PointCloud2 from `depth` (already cut: NaN = no point) and the published image
-    bytes (3 or 1 bytes per pixel, else black), as gazebo_ros_openni_kinect fills it."""
-    f = width / (2.0 * math.tan(hfov / 2.0))
-    u = (np.arange(width, dtype=np.float64) - 0.5 * (width - 1)) / f
-    v = (np.arange(height, dtype=np.float64) - 0.5 * (height - 1)) / f
-    z = depth.astype(np.float64)
-    with np.errstate(invalid='ignore'):
-        x = z * u[None, :]
-        y = z * v[:, None]
-    nan = np.isnan(z)
-    x[nan] = np.nan
-    y[nan] = np.nan
-    buf = np.zeros((height, width, CLOUD_POINT_STEP), dtype=np.uint8)
-    xyz = np.stack([x, y, z], axis=-1).astype('<f4')
-    buf[:, :, 0:12] = xyz.view(np.uint8).reshape(height, width, 12)
-    if image_bytes is not None:
-        img = np.frombuffer(image_bytes, dtype=np.uint8)
-        if img.size == width * height * 3:
-            buf[:, :, 16:19] = img.reshape(height, width, 3)
-        elif img.size == width * height:
-            buf[:, :, 16:19] = img.reshape(height, width, 1)
-    msg = PointCloud2()
-    msg.header.frame_id = frame_id
-    msg.header.stamp = stamp
-    msg.height, msg.width = height, width
-    msg.fields = list(CLOUD_FIELDS)
-    msg.is_bigendian = False
-    msg.point_step = CLOUD_POINT_STEP
-    msg.row_step = CLOUD_POINT_STEP * width
-    msg.data = buf.tobytes()
-    msg.is_dense = not bool(np.isnan(z).any())
-    return msg
 
 
 _LOCKS_GUARD = threading.Lock()
@@ -215,14 +78,6 @@ def _render_lock(ctx):
     return lock
 
 
-def _num(params, key, default, cast=float):
-    v = params.get(key, default)
-    try:
-        return cast(v)
-    except (TypeError, ValueError):
-        return None
-
-
 class CameraPlugin(Plugin):
     """libgazebo_ros_camera.so"""
 
@@ -237,60 +92,69 @@ class CameraPlugin(Plugin):
             raise self.error('must be inside a <sensor type="%s">'
                              % ('depth' if self.depth_outputs else 'camera'))
         self.ns = sensor_namespace(self)
-        sp = sensor.params
-        where = "sensor '%s'" % sensor.name
-        self.width = _num(sp, 'width', 320, int)
-        self.height = _num(sp, 'height', 240, int)
-        self.hfov = _num(sp, 'horizontal_fov', 1.047)
-        self.near = _num(sp, 'near', 0.1)
-        self.far = _num(sp, 'far', 100.0)
-        for name, v in (('width', self.width), ('height', self.height)):
-            if v is None or v <= 0:
-                raise self.error('%s: <image><%s> must be a positive integer, got %r'
-                                 % (where, name, sp.get(name)))
-        if self.hfov is None or not 0 < self.hfov < math.pi:
-            raise self.error('%s: <horizontal_fov> must be in (0, pi) rad for a pinhole camera, '
-                             'got %r' % (where, sp.get('horizontal_fov')))
-        if self.near is None or self.far is None or not 0 < self.near < self.far:
-            raise self.error('%s: <clip> needs 0 < near < far, got near %r far %r'
-                             % (where, sp.get('near'), sp.get('far')))
-        self.format = str(sp.get('format', 'R8G8B8') or 'R8G8B8').strip()
-        self.encoding, self.channels, self.bytes, known = encoding_of(self.format)
-        if not known:
+        try:
+            self.camera = CameraModel(sensor)
+        except ModelError as e:
+            raise self.error(str(e)) from None
+        if not self.camera.known_format:
             rospy.logerr('%s(ns = %s): Unsupported Gazebo ImageFormat %r, publishing bgr8'
-                         % (self.label, self.ns or '/', self.format))
-        self.noise_mean = _num(sp, 'noise_mean', 0.0) or 0.0
-        self.noise_stddev = _num(sp, 'noise_stddev', 0.0) or 0.0
-        self.rng = np.random.default_rng()
-
+                         % (self.label, self.ns or '/', self.camera.format))
         # plugin tags (the original logs their absence at DEBUG level only)
-        p = lambda tag, default, cast=str: self.param(tag, default, cast, warn=False)  # noqa
-        self.camera_name = p('cameraName', '').strip()
+        self.camera_name = self._tag('cameraName', '').strip()
         if not self.camera_name:
             rospy.logwarn('%s(ns = %s): dynamic reconfigure is not enabled for this image topic '
                           '[%s] because <cameraName> is not specified'
-                          % (self.label, self.ns or '/', p('imageTopicName', 'image_raw')))
-        self.frame_id = sensor_frame_name(self.ns, p('frameName', '').strip())
-        self.plugin_rate = max(0.0, p('updateRate', 0.0, float))
-        focal = p('focalLength', 0.0, float)
-        cx = p('Cx', 0.0, float)
-        cy = p('Cy', 0.0, float)
-        baseline = p('hackBaseline', 0.0, float)
-        k1, k2, k3 = (p('distortionK%d' % i, 0.0, float) for i in (1, 2, 3))
-        t1, t2 = (p('distortionT%d' % i, 0.0, float) for i in (1, 2))
-        computed = self.width / (2.0 * math.tan(self.hfov / 2.0))
+                          % (self.label, self.ns or '/', self._tag('imageTopicName', 'image_raw')))
+        self.frame_id = sensor_frame_name(self.ns, self._tag('frameName', '').strip())
+        self.plugin_rate = max(0.0, self._tag('updateRate', 0.0, float))
+        self._read_intrinsics()
+        self._advertise()
+        self.link_obj = self.link(sensor.link)
+        self.set_rate(sensor.update_rate)
+        self._last_pub = None          # sim time of the last published frame (plugin throttle)
+        self._seen_version = None
+        self._renderer = None
+        self._executor = None
+        self._future = None
+        self.sync = False
+        self.frames = 0                # frames rendered and published
+
+    def _tag(self, tag, default, cast=str):
+        return self.param(tag, default, cast, warn=False)
+
+    @property
+    def rng(self):
+        """The random generator of the image noise."""
+        return self.camera.rng
+
+    @rng.setter
+    def rng(self, rng):
+        self.camera.rng = rng
+
+    def _read_intrinsics(self):
+        """K, P, D of the camera_info from focalLength, Cx, Cy, hackBaseline, distortion*."""
+        cam = self.camera
+        focal = self._tag('focalLength', 0.0, float)
+        cx = self._tag('Cx', 0.0, float)
+        cy = self._tag('Cy', 0.0, float)
+        baseline = self._tag('hackBaseline', 0.0, float)
+        k1, k2, k3 = (self._tag('distortionK%d' % i, 0.0, float) for i in (1, 2, 3))
+        t1, t2 = (self._tag('distortionT%d' % i, 0.0, float) for i in (1, 2))
+        computed = cam.focal
         if focal and abs(focal - computed) > 1e-6 * max(1.0, computed):
             rospy.logwarn('%s: The <focal_length>[%f] you have provided for camera [%s] is '
                           'inconsistent with specified image_width [%d] and HFOV [%f]. Please '
                           'double check to see that focal_length = width / (2.0 * tan(HFOV/2.0)), '
                           'the expected focal_length value is [%f]'
-                          % (self.label, focal, sensor.name, self.width, self.hfov, computed))
-        from ode_sim.engine.render import camera_info_matrix
-        self.K, self.P = camera_info_matrix(self.width, self.height, self.hfov,
+                          % (self.label, focal, self.sensor.name, cam.width, cam.hfov, computed))
+        self.K, self.P = camera_info_matrix(cam.width, cam.height, cam.hfov,
                                             cx=cx or None, cy=cy or None, focal=focal or None,
                                             hack_baseline=baseline)
         self.D = [k1, k2, t1, t2, k3]
 
+    def _advertise(self):
+        """The image and camera_info publishers, and the depth ones for a depth camera."""
+        p = self._tag
         base = self.topic(self.camera_name) if self.camera_name else self.topic('')
         base = base.rstrip('/')
 
@@ -302,34 +166,26 @@ class CameraPlugin(Plugin):
         self.image_pub = self.ctx.io.publisher(self.image_topic, Image, queue_size=2)
         self.info_pub = self.ctx.io.publisher(self.info_topic, CameraInfo, queue_size=2)
         self.depth_pub = self.depth_info_pub = self.cloud_pub = None
-        if self.depth_outputs:
-            self.depth_topic = under(p('depthImageTopicName', 'depth/image_raw').strip())
-            self.depth_info_topic = under(p('depthImageCameraInfoTopicName',
-                                            'depth/camera_info').strip())
-            self.cloud_topic = under(p('pointCloudTopicName', 'points').strip())
-            self.cutoff = p('pointCloudCutoff', 0.4, float)
-            self.cutoff_max = (p('pointCloudCutoffMax', self.cutoff_max_default, float)
-                               if self.cutoff_max_default is not None else None)
-            self.depth_pub = self.ctx.io.publisher(self.depth_topic, Image, queue_size=1)
-            self.depth_info_pub = self.ctx.io.publisher(self.depth_info_topic, CameraInfo,
-                                                        queue_size=1)
-            self.cloud_pub = self.ctx.io.publisher(self.cloud_topic, PointCloud2, queue_size=1)
-
-        self.link_obj = self.link(sensor.link)
-        self.set_rate(sensor.update_rate)
-        self._last_pub = None          # sim time of the last published frame (plugin throttle)
-        self._seen_version = None
-        self._renderer = None
-        self._executor = None
-        self._future = None
-        self.sync = False
-        self.frames = 0                # frames rendered and published
+        if not self.depth_outputs:
+            return
+        self.depth_topic = under(p('depthImageTopicName', 'depth/image_raw').strip())
+        self.depth_info_topic = under(p('depthImageCameraInfoTopicName',
+                                        'depth/camera_info').strip())
+        self.cloud_topic = under(p('pointCloudTopicName', 'points').strip())
+        self.cutoff = p('pointCloudCutoff', 0.4, float)
+        self.cutoff_max = (p('pointCloudCutoffMax', self.cutoff_max_default, float)
+                           if self.cutoff_max_default is not None else None)
+        self.depth_pub = self.ctx.io.publisher(self.depth_topic, Image, queue_size=1)
+        self.depth_info_pub = self.ctx.io.publisher(self.depth_info_topic, CameraInfo,
+                                                    queue_size=1)
+        self.cloud_pub = self.ctx.io.publisher(self.cloud_topic, PointCloud2, queue_size=1)
 
     # ------------------------------------------------------------------ helpers
     def _renderer_get(self):
         if self._renderer is None:
-            self._renderer = self.ctx.renderer(self.width, self.height, self.hfov, self.near,
-                                               self.far, depth=self.depth_outputs)
+            cam = self.camera
+            self._renderer = self.ctx.renderer(cam.width, cam.height, cam.hfov, cam.near,
+                                               cam.far, depth=self.depth_outputs)
         return self._renderer
 
     @staticmethod
@@ -391,30 +247,29 @@ class CameraPlugin(Plugin):
             fut.result(timeout)
 
     def _publish_infos(self, stamp, info, dinfo):
+        cam = self.camera
         if info:
-            self.info_pub.publish(camera_info_message(self.width, self.height, self.K, self.P,
-                                                      self.D, self.frame_id, stamp))
+            self.info_pub.publish(camera_info_msg(cam.width, cam.height, self.K, self.P,
+                                                  self.D, self.frame_id, stamp))
         if dinfo:
-            self.depth_info_pub.publish(camera_info_message(
-                self.width, self.height, self.K, self.P, self.D, self.frame_id, stamp))
+            self.depth_info_pub.publish(camera_info_msg(
+                cam.width, cam.height, self.K, self.P, self.D, self.frame_id, stamp))
 
     def _produce(self, pose, stamp, want_image, want_info, want_depth, want_cloud, want_dinfo):
+        cam = self.camera
         with _render_lock(self.ctx):
             rgb, depth = self._renderer.render(pose)
-        if self.noise_stddev > 0 or self.noise_mean != 0:
-            rgb = add_noise(rgb, self.noise_mean, self.noise_stddev, self.rng)
-        data = convert_image(rgb, self.encoding)
+        data = cam.image_bytes(rgb)
         if want_image:
-            self.image_pub.publish(image_message(data, self.width, self.height, self.encoding,
-                                                 self.channels, self.bytes, self.frame_id,
-                                                 stamp))
+            self.image_pub.publish(image_msg(data, cam.width, cam.height, cam.encoding,
+                                             cam.channels, cam.bytes, self.frame_id, stamp))
         if depth is not None and (want_depth or want_cloud):
             cut = cut_depth(depth, self.cutoff, self.cutoff_max)
             if want_cloud:
-                self.cloud_pub.publish(point_cloud_message(cut, data, self.width, self.height,
-                                                           self.hfov, self.frame_id, stamp))
+                self.cloud_pub.publish(point_cloud_msg(cut, data, cam.width, cam.height,
+                                                       cam.hfov, self.frame_id, stamp))
             if want_depth:
-                self.depth_pub.publish(depth_image_message(cut, self.frame_id, stamp))
+                self.depth_pub.publish(depth_image_msg(cut, self.frame_id, stamp))
         self._publish_infos(stamp, want_info, want_dinfo)
         self.frames += 1
 
