@@ -1,0 +1,1 @@
+"""ode_sim_gui: the simulator's window (gzclient), a client of ode_sim's /gazebo API."""

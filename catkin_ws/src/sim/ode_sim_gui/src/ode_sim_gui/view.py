@@ -1,0 +1,159 @@
+"""The 3D view: ode_sim.engine.render's offscreen OpenGL renderer (the one the simulated
+cameras use) draws the scene into an image that this widget paints; the mouse moves an
+OrbitCamera as in Gazebo (left drag orbit, middle or shift + left drag pan, wheel zoom towards
+the cursor; a click selects the model under the cursor)."""
+import math
+import time
+
+import numpy as np
+from PyQt5 import QtCore, QtGui, QtWidgets
+
+from ode_sim.engine.raycast import RayCaster
+from ode_sim.engine.render import Renderer
+from ode_sim_gui.orbit import OrbitCamera
+
+HFOV = math.radians(60.0)
+CLICK_PIXELS = 4
+
+
+class View3D(QtWidgets.QWidget):
+    selected = QtCore.pyqtSignal(object)          # model name or None
+    ground_clicked = QtCore.pyqtSignal(float, float)   # x, y on the ground (placing mode)
+    ground_dragged = QtCore.pyqtSignal(float, float, bool)   # x, y, finished (move tool)
+
+    def __init__(self, scene, parent=None):
+        super().__init__(parent)
+        self.scene = scene
+        self.camera = OrbitCamera(640, 480, HFOV)
+        self.setMinimumSize(160, 120)
+        self.setMouseTracking(True)
+        self.setFocusPolicy(QtCore.Qt.StrongFocus)
+        self.setSizePolicy(QtWidgets.QSizePolicy.Expanding, QtWidgets.QSizePolicy.Expanding)
+        self._renderer = None
+        self._image = None
+        self._press = None
+        self._last = None
+        self._dirty_scene = True
+        self.mode = 'select'           # 'select' | 'place' | 'translate' | 'rotate'
+        self.frames = 0
+        self.frame_times = []
+        self._caster = None
+
+    # ------------------------------------------------------------ drawing
+    def scene_changed(self):
+        """The set of shapes changed (models came or went, selection changed)."""
+        self._dirty_scene = True
+        self._caster = None
+
+    def _ensure_renderer(self):
+        w, h = max(self.width(), 1), max(self.height(), 1)
+        if self._renderer is None or (self._renderer.width, self._renderer.height) != (w, h):
+            if self._renderer is not None:
+                self._renderer.release()
+            self._renderer = Renderer(w, h, HFOV, near=0.05, far=500.0)
+            self.camera.resize(w, h)
+            self._dirty_scene = True
+        if self._dirty_scene:
+            self._renderer.set_scene(self.scene.shapes(), lights=self.scene.lights(),
+                                     ambient=self.scene.ambient(),
+                                     background=self.scene.background())
+            self._dirty_scene = False
+
+    def render_now(self):
+        """Draw one frame into the image (does not paint)."""
+        t0 = time.perf_counter()
+        self._ensure_renderer()
+        rgb, _ = self._renderer.render(self.camera.pose())
+        self._rgb = rgb
+        h, w, _ = rgb.shape
+        self._image = QtGui.QImage(rgb.data, w, h, 3 * w, QtGui.QImage.Format_RGB888)
+        self.frames += 1
+        self.frame_times.append(time.perf_counter() - t0)
+        del self.frame_times[:-100]
+
+    def paintEvent(self, event):
+        self.render_now()
+        p = QtGui.QPainter(self)
+        p.drawImage(0, 0, self._image)
+        p.end()
+
+    def last_rgb(self):
+        return getattr(self, '_rgb', None)
+
+    # -------------------------------------------------------------- mouse
+    def mousePressEvent(self, e):
+        self._press = (e.pos(), e.button(), e.modifiers())
+        self._last = e.pos()
+        if self.mode in ('translate', 'rotate') and e.button() == QtCore.Qt.LeftButton \
+                and self.scene.selected and not e.modifiers() & QtCore.Qt.ShiftModifier:
+            self._drag_start = self.camera.ground_point(e.x(), e.y())
+
+    def mouseMoveEvent(self, e):
+        if self._last is None or not e.buttons():
+            return
+        dx, dy = e.x() - self._last.x(), e.y() - self._last.y()
+        self._last = e.pos()
+        b = e.buttons()
+        shift = e.modifiers() & QtCore.Qt.ShiftModifier
+        if self.mode in ('translate', 'rotate') and b & QtCore.Qt.LeftButton and not shift \
+                and self.scene.selected and getattr(self, '_drag_start', None) is not None:
+            g = self.camera.ground_point(e.x(), e.y())
+            if g is not None:
+                self.ground_dragged.emit(float(g[0]), float(g[1]), False)
+            return
+        if b & QtCore.Qt.MiddleButton or (b & QtCore.Qt.LeftButton and shift):
+            self.camera.pan(dx, dy)
+        elif b & QtCore.Qt.LeftButton:
+            self.camera.orbit(dx, dy)
+        elif b & QtCore.Qt.RightButton:
+            self.camera.zoom(-dy / 20.0)
+        self.update()
+
+    def mouseReleaseEvent(self, e):
+        if self._press is None:
+            return
+        pos, button, _ = self._press
+        self._press = None
+        moved = (e.pos() - pos).manhattanLength()
+        if getattr(self, '_drag_start', None) is not None:
+            self._drag_start = None
+            if moved > CLICK_PIXELS:
+                g = self.camera.ground_point(e.x(), e.y())
+                if g is not None:
+                    self.ground_dragged.emit(float(g[0]), float(g[1]), True)
+                return
+        if button != QtCore.Qt.LeftButton or moved > CLICK_PIXELS:
+            return
+        if self.mode == 'place':
+            g = self.camera.ground_point(e.x(), e.y())
+            if g is not None:
+                self.ground_clicked.emit(float(g[0]), float(g[1]))
+            return
+        self.selected.emit(self.pick(e.x(), e.y()))
+
+    def wheelEvent(self, e):
+        notches = e.angleDelta().y() / 120.0
+        if notches:
+            self.camera.zoom(notches, e.pos().x(), e.pos().y())
+            self.update()
+
+    def pick(self, x, y):
+        """Name of the model whose collision is first under pixel (x, y), or None."""
+        if self._caster is None:
+            shapes = self.scene.collisions()
+            self._caster = RayCaster(shapes, core='python') if shapes else False
+        if not self._caster:
+            return None
+        o, d = self.camera.ray(x, y)
+        t, who = self._caster.cast_hits(o[None, :], d[None, :], 1000.0)
+        k = int(who[0])
+        return self._caster.shapes[k].model if k >= 0 else None
+
+    def reset_view(self):
+        self.camera.reset()
+        self.update()
+
+    def release(self):
+        if self._renderer is not None:
+            self._renderer.release()
+            self._renderer = None
