@@ -133,6 +133,7 @@ class Sensor:
     # contact: collisions (names of the link's collisions it reports)
     params: Dict[str, object] = field(default_factory=dict)
     plugins: List[Plugin] = field(default_factory=list)
+    element: object = None          # the SDF <sensor> element (Save World writes it back)
 
 
 @dataclass
@@ -189,6 +190,10 @@ class Model:
     urdf: str = ''                  # the URDF text when spawned from URDF
     canonical_link: str = ''        # root link (model pose reports this link's pose)
     allow_auto_disable: bool = True  # SDF <allow_auto_disable>: may sleep when at rest
+    # where it came from, for Save World (description/save_world.py): a world <include> or a
+    # spawned <include> of model://NAME keeps its URI; an SDF <model> its element
+    include_uri: str = ''
+    sdf_element: object = None
     warnings: List[str] = field(default_factory=list)
 
     def link(self, name):

@@ -64,6 +64,7 @@ def parse_model(ctx, el, prefix='', parent_pose=None, nested_in=None):
             raise ctx.err(el, 'model %r has no links' % name)
         model.canonical_link = model.links[0].name
         model.warnings = ctx.warnings
+        model.sdf_element = el
     return model
 
 
@@ -208,6 +209,7 @@ def _world_from_doc(doc, paths, base_dir):
             else:
                 sub_ctx.warnings = []
                 m = parse_model(sub_ctx, sub_el)
+                m.include_uri = text_of(child, 'uri')
                 warnings.extend(m.warnings)
                 add_model(m, child)
         elif child.tag == 'plugin':
@@ -244,20 +246,62 @@ def load_world(path, paths=None):
     return parse_world(data, path, paths)
 
 
-def parse_sdf_model(text, source, paths=None, name=None):
-    """Model from SDF text whose root is <sdf><model> (or <model>), e.g. the model_xml of
-    /gazebo/spawn_sdf_model; `name` replaces the model's name."""
+def _spawn_element(text, source, paths):
+    """(context, element) of a spawn request's SDF: the <model>, <light> or <include> that is
+    the root or the first of those children of <sdf>."""
     doc = parse_xml(text, source)
     root = doc.root
-    version = sdf_version(doc)
-    mel = root if root.tag == 'model' else (root.find('model') if root.tag == 'sdf' else None)
-    if mel is None:
+    el = root if root.tag in ('model', 'light', 'include') else None
+    if el is None and root.tag == 'sdf':
+        el = next((c for c in root if c.tag in ('model', 'light', 'include')), None)
+    if el is None:
         if root.tag == 'robot':
             raise doc.error(root, 'this is URDF (<robot>), not SDF: spawn it with -urdf')
-        raise doc.error(root, 'no <model> in the SDF')
+        raise doc.error(root, 'no <model>, <include> or <light> in the SDF')
     base_dir = os.path.dirname(os.path.abspath(source)) if os.path.exists(source) \
         else os.getcwd()
-    ctx = ParseContext(doc, paths or ModelPaths(), base_dir, [], version)
+    ctx = ParseContext(doc, paths or ModelPaths(), base_dir, [], sdf_version(doc))
+    return ctx, el
+
+
+def parse_sdf_light(text, source, paths=None, name=None):
+    """The Light a spawn request's SDF describes (<light>, or an <include> of a file whose
+    element is a light, e.g. model://sun), `name` replacing its name; None when the SDF
+    describes a model."""
+    ctx, el = _spawn_element(text, source, paths)
+    if el.tag == 'include':
+        sub_el, sub_ctx = _include_element(ctx, el)
+        if sub_el.tag != 'light':
+            return None
+        _apply_include_overrides(ctx, el, sub_el)
+        ctx, el = sub_ctx, sub_el
+    if el.tag != 'light':
+        return None
+    if name:
+        el.set('name', name)
+    light = parse_light(ctx, el)
+    light.element = el
+    return light
+
+
+def parse_sdf_model(text, source, paths=None, name=None):
+    """Model from SDF text whose root is <sdf><model> (or <model>), e.g. the model_xml of
+    /gazebo/spawn_sdf_model, or <sdf><include><uri>model://NAME</uri></include> (the model
+    remembers its URI, include_uri, for Save World); `name` replaces the model's name."""
+    ctx, mel = _spawn_element(text, source, paths)
+    if mel.tag == 'light':
+        raise ctx.doc.error(mel, 'this SDF describes a light, not a model')
+    uri = ''
+    if mel.tag == 'include':
+        inc = mel
+        mel, sub_ctx = _include_element(ctx, inc)
+        if mel.tag != 'model':
+            raise ctx.err(inc, '<include> of a light: spawn it as a light')
+        _apply_include_overrides(ctx, inc, mel)
+        uri = text_of(inc, 'uri')
+        ctx = sub_ctx
     if name:
         mel.set('name', name)
-    return parse_model(ctx, mel)
+    model = parse_model(ctx, mel)
+    model.include_uri = uri
+    return model

@@ -245,7 +245,7 @@ def parse_sensor(ctx, el, link_name):
     stype = (el.get('type') or '').strip()
     if not stype:
         raise ctx.err(el, '<sensor name=%r> needs a type attribute' % name)
-    sensor = Sensor(name=name, type=stype, link=link_name)
+    sensor = Sensor(name=name, type=stype, link=link_name, element=el)
     sensor.pose = ctx.pose(el, link_name)
     sensor.update_rate = ctx.num(el, 'update_rate', 0.0)
     sensor.always_on = ctx.boolean(el, 'always_on', True)

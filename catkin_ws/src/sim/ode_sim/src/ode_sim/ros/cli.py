@@ -63,6 +63,10 @@ def main(argv):
         rospy.logfatal('sim_node: %s' % e)
         sys.stderr.write('sim_node: error: %s\n' % e)
         return 1
+    # a saved world's <state>: every link where it was (joint positions of robots)
+    from ode_sim.description.save_world import apply_link_states, read_state
+    with node.lock:
+        apply_link_states(node.physics.models, read_state(path))
     # as gazebo_ros_api_plugin: /use_sim_time true unless the user set it
     if not rospy.has_param('/use_sim_time'):
         rospy.set_param('/use_sim_time', True)
@@ -72,6 +76,8 @@ def main(argv):
                         scene_markers=param_bool('~scene_markers', False))
         from ode_sim.ros.physics_reconfigure import PhysicsReconfigure
         api.reconfigure = PhysicsReconfigure(api, log=rospy.loginfo).server()
+        from ode_sim.ros.world_control import WorldControl
+        api.world_control = WorldControl(node, api)
     else:
         rospy.loginfo('ROS gazebo topics/services are disabled')
     rospy.loginfo('ode_sim: world %s loaded (%d models, step %g s, update rate %g Hz%s)%s'

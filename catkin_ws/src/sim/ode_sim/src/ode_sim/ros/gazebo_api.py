@@ -368,7 +368,9 @@ class GazeboApi:
         return self._spawn(req, 'urdf')
 
     def spawn_sdf(self, req):
-        return self._spawn(req, 'sdf')
+        from ode_sim.ros.world_control import spawn_light
+        res = spawn_light(self, req)        # a <light>: world_control.py
+        return res if res is not None else self._spawn(req, 'sdf')
 
     def delete_model(self, req):
         with self.node.lock:
