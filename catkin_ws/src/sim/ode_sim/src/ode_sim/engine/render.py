@@ -2,7 +2,7 @@
 
 One EGL context per process, created on first use and shared by every Renderer (each has its
 own framebuffer of its own size). An EGL context is current in one thread only, so all GL work
-runs in one daemon thread of this module ("ode_sim-gl"); Renderer methods may be called from
+runs in one daemon thread (engine/gl.py, "ode_sim-gl"); Renderer methods may be called from
 any thread (they hand the GL part over and wait for it).
 
 Camera convention (Gazebo's): the camera frame looks along +X, +Z is up, +Y is left. The image
@@ -33,224 +33,13 @@ material. Texture images are read with Pillow (one decode per file and version);
 cannot be read is drawn in its material's plain colour, with a warning on stderr.
 """
 import math
-import os
-import queue
-import sys
-import threading
 
 import numpy as np
 
 from ode_sim.description.model import ModelError
+from ode_sim.engine import gl
 from ode_sim.engine.camera import camera_info_matrix, focal_length  # noqa: F401 (re-exported)
 from ode_sim.engine.tessellate import tessellate, uv_of
-
-MAX_LIGHTS = 8
-SPECULAR = 0.2          # material specular factor
-SHININESS = 32.0
-
-_VERTEX_SHADER = """
-#version 330
-uniform mat4 u_viewproj;
-uniform mat4 u_model;
-in vec3 in_pos;
-in vec3 in_normal;
-out vec3 v_world;
-out vec3 v_normal;
-void main() {
-    vec4 w = u_model * vec4(in_pos, 1.0);
-    v_world = w.xyz;
-    v_normal = mat3(u_model) * in_normal;
-    gl_Position = u_viewproj * w;
-}
-"""
-
-_VERTEX_SHADER_UV = """
-#version 330
-uniform mat4 u_viewproj;
-uniform mat4 u_model;
-uniform vec2 u_uvscale;
-in vec3 in_pos;
-in vec3 in_normal;
-in vec2 in_uv;
-out vec3 v_world;
-out vec3 v_normal;
-out vec2 v_uv;
-void main() {
-    vec4 w = u_model * vec4(in_pos, 1.0);
-    v_world = w.xyz;
-    v_normal = mat3(u_model) * in_normal;
-    v_uv = in_uv / u_uvscale;
-    gl_Position = u_viewproj * w;
-}
-"""
-
-
-
-def _fragment_shader(nlights, textured=False):
-    """Per-pixel lighting, the light loop unrolled for `nlights` lights and branch-free (a
-    loop over a uniform count with pow() costs llvmpipe ~3x as much); `textured`: the diffuse
-    texture multiplies the material's ambient and diffuse colours."""
-    head = ['#version 330', 'uniform vec4 u_color;', 'uniform vec3 u_ambient;',
-            'uniform vec3 u_mat_ambient;', 'uniform vec3 u_mat_specular;',
-            'uniform vec3 u_emissive;']
-    if textured:
-        head += ['uniform sampler2D u_tex;', 'in vec2 v_uv;']
-    if nlights:
-        head += ['uniform vec3 u_eye;',
-                 # xyz: direction towards which the light shines (w = 0) or its position (w = 1)
-                 'uniform vec4 u_light_vec[%d];' % nlights,
-                 'uniform vec3 u_light_diffuse[%d];' % nlights,
-                 'uniform vec3 u_light_specular[%d];' % nlights]
-    head += ['in vec3 v_world;', 'in vec3 v_normal;', 'out vec4 f_color;', 'void main() {']
-    if textured:
-        head += ['    vec3 tex = texture(u_tex, v_uv).rgb;',
-                 '    vec3 base = u_color.rgb * tex;',
-                 '    vec3 c = u_ambient * u_mat_ambient * tex + u_emissive;']
-    else:
-        head += ['    vec3 base = u_color.rgb;',
-                 '    vec3 c = u_ambient * u_mat_ambient + u_emissive;']
-    if nlights:
-        head += ['    vec3 view = normalize(u_eye - v_world);',
-                 '    vec3 n = normalize(v_normal);',
-                 '    n = dot(n, view) < 0.0 ? -n : n;         // both sides lit']
-    squarings = int(round(math.log2(SHININESS)))
-    for i in range(nlights):
-        head += ['    {',
-                 '        vec4 lv = u_light_vec[%d];' % i,
-                 '        vec3 l = normalize(mix(-lv.xyz, lv.xyz - v_world, lv.w));',
-                 '        float d = max(dot(n, l), 0.0);',
-                 '        float s = max(dot(n, normalize(l + view)), 0.0);',
-                 '        ' + ' '.join(['s *= s;'] * squarings) + '   // s^%d' % 2 ** squarings,
-                 '        c += d * u_light_diffuse[%d] * base' % i,
-                 '             + (d > 0.0 ? s : 0.0) * u_mat_specular * u_light_specular[%d];' % i,
-                 '    }']
-    head += ['    f_color = vec4(min(c, vec3(1.0)), u_color.a);', '}', '']
-    return '\n'.join(head)
-
-
-_ctx = None
-_programs = {}          # (number of lights, textured) -> moderngl.Program
-_textures = {}          # (path, mtime) -> moderngl.Texture (GL thread), shared by renderers
-_texture_data = {}      # (path, mtime) -> RGBA uint8 array, bottom row first, or None
-_texture_warned = set()
-_gl_thread = None
-_gl_queue = queue.Queue()
-_gl_start = threading.Lock()
-
-
-def _gl_worker():
-    while True:
-        fn, args, result, done = _gl_queue.get()
-        try:
-            result.append(fn(*args))
-        except BaseException as e:  # noqa: BLE001 - handed back to the caller
-            result.append(e)
-            result.append(None)
-        done.set()
-
-
-def _gl(fn, *args):
-    """Run fn(*args) in the GL thread and return its result (or raise its exception)."""
-    global _gl_thread
-    if threading.current_thread() is _gl_thread:
-        return fn(*args)
-    if _gl_thread is None:
-        with _gl_start:
-            if _gl_thread is None:
-                t = threading.Thread(target=_gl_worker, name='ode_sim-gl', daemon=True)
-                t.start()
-                _gl_thread = t
-    result, done = [], threading.Event()
-    _gl_queue.put((fn, args, result, done))
-    done.wait()
-    if len(result) == 2:
-        raise result[0]
-    return result[0]
-
-
-def _context():
-    """The process's EGL context, created on first call (GL thread only)."""
-    global _ctx
-    if _ctx is None:
-        try:
-            import moderngl
-        except ImportError as e:
-            raise ModelError('ode_sim.render: cannot import moderngl (%s): install the Debian '
-                             'package python3-moderngl' % e) from None
-        try:
-            _ctx = moderngl.create_standalone_context(backend='egl', require=330)
-        except Exception as e:  # noqa: BLE001 - moderngl raises plain Exception
-            raise ModelError('ode_sim.render: cannot create an offscreen OpenGL 3.3 context '
-                             'through EGL (%s): install libegl1, libegl-mesa0 and '
-                             'libgl1-mesa-dri' % str(e).strip().splitlines()[0]) from None
-    return _ctx
-
-
-def _program(nlights, textured=False):
-    """The shader program for `nlights` lights, with a texture or not (GL thread only)."""
-    prog = _programs.get((nlights, textured))
-    if prog is None:
-        ctx = _context()
-        try:
-            prog = ctx.program(vertex_shader=_VERTEX_SHADER_UV if textured else _VERTEX_SHADER,
-                               fragment_shader=_fragment_shader(nlights, textured))
-        except Exception as e:  # noqa: BLE001
-            raise ModelError('ode_sim.render: shader compilation failed on %s: %s'
-                             % (ctx.info.get('GL_RENDERER', '?'), e)) from None
-        _programs[(nlights, textured)] = prog
-    return prog
-
-
-def texture_image(path):
-    """(key, RGBA uint8 (h, w, 4) with the bottom row first, as GL wants it) of a texture
-    file, decoded once per version with Pillow; (None, None) with a warning on stderr (once per
-    file) when it cannot be read: the caller draws the plain colour."""
-    try:
-        key = (path, os.path.getmtime(path))
-    except OSError as e:
-        key, why = (path, None), e.strerror or str(e)
-    else:
-        if key in _texture_data:
-            return (key, _texture_data[key]) if _texture_data[key] is not None else (None, None)
-        why = None
-        try:
-            from PIL import Image
-            with Image.open(path) as im:
-                img = np.asarray(im.convert('RGBA'))[::-1].copy()
-            if img.size == 0:
-                raise ValueError('the image is empty')
-        except ImportError:
-            why = 'Pillow is not installed (Debian package python3-pil)'
-        except Exception as e:  # noqa: BLE001 - PIL raises many kinds
-            why = str(e).strip().splitlines()[0] if str(e).strip() else type(e).__name__
-        _texture_data[key] = None if why else img
-        if not why:
-            return key, img
-    if path not in _texture_warned:
-        _texture_warned.add(path)
-        sys.stderr.write('ode_sim.render: texture %s cannot be read (%s); drawn in its plain '
-                         'colour\n' % (path, why))
-    return None, None
-
-
-def _gl_texture(ctx, key, img):
-    tex = _textures.get(key)
-    if tex is None:
-        tex = ctx.texture((img.shape[1], img.shape[0]), 4, img.tobytes())
-        tex.build_mipmaps()
-        tex.filter = (ctx.LINEAR_MIPMAP_LINEAR, ctx.LINEAR)
-        tex.repeat_x = tex.repeat_y = True
-        _textures[key] = tex
-    return tex
-
-
-def gl_renderer():
-    """'GL_RENDERER, GL_VERSION' of the shared context (creates it): e.g. 'llvmpipe ...'."""
-    def info():
-        i = _context().info
-        return '%s, OpenGL %s' % (i.get('GL_RENDERER', '?'), i.get('GL_VERSION', '?'))
-    return _gl(info)
-
 
 # camera frame (X forward, Y left, Z up) -> OpenGL eye frame (x right, y up, looking along -z)
 _CAM_TO_GL = np.array([[0.0, -1.0, 0.0, 0.0],
@@ -305,11 +94,11 @@ class Renderer:
         self._progs = {}
         self._released = False
         self._color_rb = self._depth_rb = self._fbo = None
-        _gl(self._gl_create)
+        gl.run(self._gl_create)
         self.set_scene([])
 
     def _gl_create(self):
-        ctx = _context()
+        ctx = gl.context()
         try:
             self._color_rb = ctx.renderbuffer((self.width, self.height), components=4)
             self._depth_rb = ctx.depth_renderbuffer((self.width, self.height))
@@ -325,12 +114,12 @@ class Renderer:
 
         GPU meshes are cached per geometry object (by identity) and part: calling again after
         models were added or removed uploads only the new geometries and frees the unused ones.
-        Only the first MAX_LIGHTS lights are used; point and spot lights shine from their
-        position in all directions without falloff.
+        Only the first MAX_LIGHTS (engine/gl.py) lights are used; point and spot lights shine
+        from their position in all directions without falloff.
         """
         amb = _check_color('scene ambient', ambient)
         bg = _check_color('scene background', background)
-        lights = list(lights)[:MAX_LIGHTS]
+        lights = list(lights)[:gl.MAX_LIGHTS]
         vec, dif, spe = [], [], []
         for light in lights:
             if light.type == 'directional':
@@ -372,12 +161,12 @@ class Renderer:
                     new[key] = (g, np.concatenate(cols, axis=1).astype('f4'),
                                 np.asarray(idx).astype('u4'), textured)
                 draw.append((sh, key, uniforms, tex_key, tex_img))
-        _gl(self._gl_set_scene, draw, new, lights_u)
+        gl.run(self._gl_set_scene, draw, new, lights_u)
         self._ambient, self._background, self._lights = amb, tuple(bg) + (1.0,), lights_u
 
     def _gl_set_scene(self, draw, new, lights_u):
-        ctx = _context()
-        progs = {False: _program(lights_u[0], False), True: _program(lights_u[0], True)}
+        ctx = gl.context()
+        progs = {False: gl.program(lights_u[0], False), True: gl.program(lights_u[0], True)}
         keep = {}
         for key, (geometry, data, idx, textured) in new.items():
             keep[key] = _Mesh(ctx, geometry, data, idx, textured)
@@ -395,7 +184,7 @@ class Renderer:
             if not mesh.count:
                 continue
             textured = tex_key is not None
-            tex = _gl_texture(ctx, tex_key, tex_img) if textured else None
+            tex = gl.texture(ctx, tex_key, tex_img) if textured else None
             items.append((sh, mesh.vao(ctx, progs[textured]), uniforms, tex, textured))
         # opaque plain, opaque textured, then the transparent ones (blended)
         items.sort(key=lambda it: (it[2][-1] < 1.0, it[4]))
@@ -413,11 +202,11 @@ class Renderer:
                   for s, vao, u, tex, textured in self._shapes]
         rgb = np.empty((self.height, self.width, 3), dtype=np.uint8)
         zbuf = np.empty((self.height, self.width), dtype=np.float32) if self.depth else None
-        _gl(self._gl_render, viewproj, tuple(float(v) for v in cam[:3, 3]), models, rgb, zbuf)
+        gl.run(self._gl_render, viewproj, tuple(float(v) for v in cam[:3, 3]), models, rgb, zbuf)
         return rgb, (self._linear_depth(zbuf) if self.depth else None)
 
     def _gl_render(self, viewproj, eye, models, rgb, zbuf):
-        ctx = _context()
+        ctx = gl.context()
         self._fbo.use()
         ctx.enable_only(ctx.DEPTH_TEST | ctx.CULL_FACE)
         ctx.front_face = 'cw'          # the projection flips Y (image rows top first)
@@ -479,7 +268,7 @@ class Renderer:
         if self._released:
             return
         self._released = True
-        _gl(self._gl_release)
+        gl.run(self._gl_release)
 
     def _gl_release(self):
         for mesh in self._meshes.values():
@@ -493,9 +282,9 @@ class Renderer:
 
     def __del__(self):
         try:
-            if not self._released and _gl_thread is not None:
+            if not self._released and gl.started():
                 self._released = True
-                _gl_queue.put((self._gl_release, (), [], threading.Event()))
+                gl.post(self._gl_release)
         except Exception:  # noqa: BLE001 - interpreter shutdown
             pass
 
@@ -545,7 +334,7 @@ def _uniforms(where, mat, color):
     tex_key = tex_img = None
     if mat is None:
         diffuse = list(color) + [1.0]
-        ambient, specular, emissive, uvs = color, [SPECULAR] * 3, [0.0] * 3, (1.0, 1.0)
+        ambient, specular, emissive, uvs = color, [gl.SPECULAR] * 3, [0.0] * 3, (1.0, 1.0)
     else:
         d = _check_color('%s: material %r diffuse' % (where, mat.name), mat.diffuse)
         opacity = float(mat.opacity)
@@ -558,7 +347,7 @@ def _uniforms(where, mat, color):
         emissive = _check_color('%s: material %r emissive' % (where, mat.name), mat.emissive)
         uvs = tuple(float(v) for v in mat.uv_scale)
         if mat.texture:
-            tex_key, tex_img = texture_image(mat.texture)
+            tex_key, tex_img = gl.texture_image(mat.texture)
     f4 = lambda v: np.array(v, dtype='f4').tobytes()  # noqa: E731
     return (f4(diffuse), f4(ambient), f4(specular), f4(emissive), f4(uvs), diffuse[3]), \
         tex_key, tex_img

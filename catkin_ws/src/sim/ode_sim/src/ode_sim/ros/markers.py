@@ -74,7 +74,7 @@ def _material_rgba(mat, fallback):
         return tuple(float(c) for c in fallback)
     rgb = np.array([float(c) for c in mat.diffuse[:3]])
     if mat.texture:
-        from ode_sim.engine.render import texture_image
+        from ode_sim.engine.gl import texture_image
         _, img = texture_image(mat.texture)
         if img is not None:
             rgb = rgb * img[..., :3].reshape(-1, 3).mean(axis=0) / 255.0
