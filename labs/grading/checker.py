@@ -34,9 +34,11 @@ def foreign_publishers(owners, obs):
     return None
 
 
-def run_checker(lab, module, observe):
-    """Run the checker node of `lab` ('lab1', 'lab2', 'lab3'): `module` is grading.labN (PACKAGE,
-    CRITERIA, evaluate); `observe(isu, pkg_dir, workdir)` returns the observation to evaluate."""
+def run_checker(lab_pkg, rules, observe):
+    """Run the checker node of a lab: `lab_pkg` is its package (grading.labN: PACKAGE, CRITERIA),
+    `rules` its rules module (evaluate, optionally topic_owners); `observe(isu, pkg_dir,
+    workdir)` returns the observation to evaluate."""
+    lab = lab_pkg.__name__.split('.')[-1]
 
     class Check(unittest.TestCase):
         crits = {}
@@ -50,15 +52,15 @@ def run_checker(lab, module, observe):
             # labs/grade passes the report path in the environment (not readable over ROS)
             report = os.environ.get('GRADING_REPORT') or rospy.get_param('~report')
             workdir = rospy.get_param('~workdir', '/tmp')
-            pkg_dir = rospkg.RosPack().get_path(module.PACKAGE)
+            pkg_dir = rospkg.RosPack().get_path(lab_pkg.PACKAGE)
             obs = observe(isu, pkg_dir, workdir)
-            crits = module.evaluate(obs)
+            crits = rules.evaluate(obs)
             why = None
             if shutdown or rospy.is_shutdown():
                 why = ('the checker was shut down through the ROS API before it finished (%s)'
                        % (shutdown[0] if shutdown else 'no reason given'))
-            elif hasattr(module, 'topic_owners'):
-                why = foreign_publishers(module.topic_owners(isu), obs)
+            elif hasattr(rules, 'topic_owners'):
+                why = foreign_publishers(rules.topic_owners(isu), obs)
             if why:
                 crits = tampered(crits, why)
             write_report(report, crits)
@@ -72,7 +74,7 @@ def run_checker(lab, module, observe):
         test.__doc__ = en
         return test
 
-    for cid, _ru, en in module.CRITERIA:
+    for cid, _ru, en in lab_pkg.CRITERIA:
         setattr(Check, 'test_%s' % cid, make(cid, en))
     Check.__name__ = Check.__qualname__ = '%sCheck' % lab.capitalize()
     rostest.rosrun('%s_grader' % lab, 'check_%s' % lab, Check, sys.argv)

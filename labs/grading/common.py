@@ -43,6 +43,11 @@ class Criterion:
                    d.get('reason') or reason('', ''), d.get('details') or {})
 
 
+def criteria_by_id(table):
+    """{id: a fresh, not yet judged Criterion} of a lab's CRITERIA [(id, title ru, title en)]."""
+    return {cid: Criterion(cid, ru, en) for cid, ru, en in table}
+
+
 def write_report(path, criteria):
     tmp = path + '.tmp'
     with open(tmp, 'w') as f:

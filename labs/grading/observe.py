@@ -5,215 +5,15 @@ wall seconds (time.monotonic) so that a stalled node cannot stall the clock.
 """
 import math
 import os
-import signal
-import subprocess
 import threading
 import time
 
 import rosgraph
-import roslib.message
 import rospy
-from course_runtime import SOFTWARE_GL, stop_tree
+from course_runtime import SOFTWARE_GL
 
-IGNORED_NODES = ('/rosout',)
-
-
-def numeric(msg):
-    """The number in a std_msgs-like message (`data` field), or None."""
-    v = getattr(msg, 'data', None)
-    if isinstance(v, bool):
-        return float(v)
-    if isinstance(v, (int, float)):
-        return float(v)
-    if hasattr(v, 'to_sec'):
-        return float(v.to_sec())
-    return None
-
-
-def last_line(path):
-    try:
-        with open(path, errors='replace') as f:
-            lines = [l.strip() for l in f.read().splitlines() if l.strip()]
-    except OSError:
-        return ''
-    return lines[-1][:200] if lines else '(no output)'
-
-
-class Child:
-    """A student process in its own process group, output logged."""
-
-    def __init__(self, cmd, log, env=None):
-        from grading import sandbox
-        self.log = log
-        self._out = open(log, 'wb')
-        env = dict(os.environ if env is None else env)
-        box = sandbox.Sandbox.from_env(env)
-        if box is not None:     # labs/grade asked for the student's processes to be sandboxed
-            cmd = box.wrap(cmd)
-            env = box.env(env)
-        self.p = subprocess.Popen(cmd, stdout=self._out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                  env=env, start_new_session=True)
-        self.killed_for = None
-        if box is not None:
-            ns = sandbox.pidns_of_child(self.p.pid)
-            sandbox.remember_pidns(ns)
-            if ns:
-                threading.Thread(target=self._watch, args=(ns, box.limits['procs']), daemon=True).start()
-
-    def _watch(self, ns, limit):
-        """Stop the sandbox when its processes reach `limit` (a fork bomb), so that it fails
-        its own run quickly and nothing else."""
-        from grading import sandbox
-        while self.p.poll() is None:
-            n = sandbox.count_procs(ns)
-            if n >= limit:
-                self.killed_for = ('stopped by the grader: the sandbox reached its process limit '
-                                   '(%d processes at once; a fork bomb?)' % n)
-                stop_tree(self.p, first=signal.SIGKILL, grace=2.0)
-                return
-            time.sleep(0.5)
-
-    def rc(self):
-        return self.p.poll()
-
-    def stop(self):
-        stop_tree(self.p, grace=8.0)
-        self._out.close()
-
-
-class GraphWatcher:
-    """Accumulates the master's system state; subscribes to topics on request."""
-
-    def __init__(self):
-        self.me = rospy.get_name()
-        self.master = rosgraph.Master(self.me)
-        self.nodes = set()
-        self.pubs, self.subs, self.srvs = {}, {}, {}
-        self.types = {}
-        self.msgs = {}
-        self._subscribed = {}
-        self.lock = threading.Lock()
-
-    def poll(self):
-        try:
-            pubs, subs, srvs = self.master.getSystemState()
-            types = dict(self.master.getTopicTypes())
-        except Exception:   # master busy: try again next poll
-            return False
-        self.types.update(types)
-        for table, dest in ((pubs, self.pubs), (subs, self.subs), (srvs, self.srvs)):
-            for name, nodes in table:
-                for n in nodes:
-                    if n == self.me or n in IGNORED_NODES:
-                        continue
-                    self.nodes.add(n)
-                    dest.setdefault(n, set()).add(name)
-        return True
-
-    def listen(self, topic, convert=numeric, cls=None):
-        """Record (t, convert(msg)) of a topic; type looked up from the master unless given."""
-        if topic in self._subscribed:
-            return True
-        if cls is None:
-            t = self.types.get(topic)
-            cls = roslib.message.get_message_class(t) if t else None
-            if cls is None:
-                return False
-        self.msgs.setdefault(topic, [])
-
-        def cb(msg, topic=topic):
-            v = convert(msg)
-            if v is not None:
-                with self.lock:
-                    self.msgs[topic].append((time.monotonic(), v))
-        self._subscribed[topic] = rospy.Subscriber(topic, cls, cb, queue_size=100)
-        return True
-
-    def series(self, topic):
-        with self.lock:
-            return list(self.msgs.get(topic, []))
-
-    def state(self):
-        return {'nodes': sorted(self.nodes),
-                'pubs': {n: sorted(t) for n, t in self.pubs.items()},
-                'subs': {n: sorted(t) for n, t in self.subs.items()},
-                'srvs': {n: sorted(t) for n, t in self.srvs.items()},
-                'types': dict(self.types)}
-
-
-class Lab1Observer:
-    """Start node1..3 of the student's package, watch numbers and the result."""
-
-    def __init__(self, isu, scripts, logdir):
-        from grading import lab1
-        self.lab1 = lab1
-        self.isu = isu
-        self.scripts = scripts      # {'node1.py': path, ...}
-        self.logdir = logdir
-        self.graph = GraphWatcher()
-
-    def run(self):
-        lab1 = self.lab1
-        children = {}
-        start = time.monotonic()
-        not_exec = [n + '.py' for n in lab1.NODES
-                    if n + '.py' in self.scripts and not os.access(self.scripts[n + '.py'], os.X_OK)]
-        for n in lab1.NODES:
-            path = self.scripts.get(n + '.py')
-            if path and n + '.py' not in not_exec:
-                children[n] = Child([path, '_isu:=%s' % self.isu], os.path.join(self.logdir, n + '.log'))
-        comp, _, _ = lab1.roles(self.isu)
-        first_result = None
-        try:
-            while not rospy.is_shutdown():
-                now = time.monotonic()
-                self.graph.poll()
-                for topic, nodes_pub in self._student_topics():
-                    self.graph.listen(topic)
-                res = [t for t in lab1.result_topics(self.isu, comp) if self.graph.series(t)]
-                if res and first_result is None:
-                    first_result = now
-                if first_result is not None and now - first_result >= lab1.OBSERVE:
-                    break
-                if first_result is None and now - start > lab1.STARTUP_LIMIT:
-                    break
-                if children and all(c.rc() is not None for c in children.values()):
-                    time.sleep(0.5)
-                    break
-                time.sleep(0.2)
-            end = time.monotonic()
-            procs = {n: {'rc': c.rc(), 'last': (c.killed_for or last_line(c.log)) if c.rc() is not None else ''}
-                     for n, c in children.items()}
-        finally:
-            for c in children.values():
-                c.stop()
-        obs = {'isu': self.isu, 'scripts': sorted(self.scripts), 'not_executable': not_exec,
-               'procs': procs, 'start': start, 'end': end,
-               'msgs': {t: self.graph.series(t) for t in self.graph.msgs}}
-        obs.update(self.graph.state())
-        return obs
-
-    def _student_topics(self):
-        for n, topics in list(self.graph.pubs.items()):
-            for t in topics:
-                if t not in ('/rosout', '/rosout_agg'):
-                    yield t, n
-
-
-def launch_failure(log):
-    """The telling line of a failed roslaunch's output."""
-    try:
-        with open(log, errors='replace') as f:
-            lines = [l.strip() for l in f.read().splitlines() if l.strip()]
-    except OSError:
-        return 'roslaunch failed (no output)'
-    lines = [plain(l).strip() for l in lines]
-    for key in ('RLException', 'ResourceNotFound', 'Resource not found', 'ERROR', 'Error', 'error'):
-        for l in lines:
-            if key in l:
-                return l[:250]
-    return (lines[-1] if lines else 'no output')[:250]
-
+from grading.launch import (Child, GraphWatcher, error_line, launch_failure, node_argv, node_process, plain,
+                            process_argv)
 
 class Motion:
     """Tracks when a turtle last moved (position by MOVE_EPS or heading by 0.05 rad)."""
@@ -324,35 +124,6 @@ class Lab2Observer:
         obs['wall_msgs'] = list(self.walls)
         obs.update(self.graph.state())
         return obs
-
-
-def node_argv(master, node):
-    """The command line of a ROS node (from its PID over XML-RPC), or []."""
-    return node_process(master, node)[1]
-
-
-def node_process(master, node):
-    """(host PID, command line) of a ROS node (its PID over XML-RPC), or (None, [])."""
-    try:
-        import xmlrpc.client
-        uri = master.lookupNode(node)
-        code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/lab3_checker')
-        from grading.sandbox import host_pid
-        pid = host_pid(pid)     # a sandboxed node reports its pid in the sandbox's namespace
-        if pid is None:
-            return None, []
-        return pid, process_argv(pid)
-    except Exception:   # node gone or not answering: not counted
-        return None, []
-
-
-def process_argv(pid):
-    """The command line of process `pid`, or [] when it is gone."""
-    try:
-        with open('/proc/%d/cmdline' % pid, 'rb') as f:
-            return [a.decode(errors='replace') for a in f.read().split(b'\0') if a]
-    except OSError:
-        return []
 
 
 class Lab3Observer:
@@ -521,23 +292,6 @@ class Lab3Observer:
                     res['rviz']['config_error'] = str(e)
         res['nodes'] = {n: ' '.join(a)[:200] for n, a in argv_seen.items()}
         return res
-
-
-def plain(text):
-    """Text without terminal colour codes and control characters (they break JUnit XML)."""
-    import re
-    text = re.sub(r'\x1b\[[0-9;]*[A-Za-z]|\x1b\][^\x07]*\x07', '', text)
-    return ''.join(ch for ch in text if ch >= ' ' or ch == '\t')
-
-
-def error_line(text, keys):
-    """The first line of a tool's output that carries one of `keys`, else its last line."""
-    lines = [plain(l).strip() for l in text.splitlines() if plain(l).strip()]
-    for k in keys:
-        for l in lines:
-            if k in l:
-                return l[:250]
-    return (lines[-1] if lines else 'failed without output')[:250]
 
 
 class Lab4Observer:

@@ -10,4 +10,4 @@ def observe(isu, pkg_dir, workdir):
 
 
 if __name__ == '__main__':
-    run_checker('lab2', lab2, observe)
+    run_checker(lab2, lab2, observe)

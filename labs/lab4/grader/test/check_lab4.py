@@ -11,4 +11,4 @@ def observe(isu, pkg_dir, workdir):
 
 
 if __name__ == '__main__':
-    run_checker('lab4', lab4, observe)
+    run_checker(lab4, lab4, observe)

@@ -1,17 +1,15 @@
 """Lab 1 rules: three nodes, the variant's computing node, operation and result topic.
 
-Pure logic: `evaluate(obs)` turns an observation (gathered by grading.observe on a running
-graph) into the four criteria. No rospy here.
+Pure logic: `evaluate(obs)` turns an observation (gathered by grading.lab1.observer on a
+running graph) into the four criteria. No rospy here.
 """
 import math
 import os
 
-from grading.common import Criterion, reason, variant
+from grading.common import criteria_by_id, reason
+from grading.lab1.criteria import CRITERIA
+from grading.lab1.variants import NODES, operations, roles
 
-PACKAGE = 'my_robot_controller'
-GRADER_PKG = 'lab1_grader'
-DEFAULT_TIMEOUT = 200.0
-NODES = ('node1', 'node2', 'node3')
 STARTUP_LIMIT = 60.0   # s from start until every node is up and the first result arrives (generous: a
                        # loaded machine starts three rospy nodes slowly; a working solution needs ~3 s)
 OBSERVE = 8.0          # s of observation after the first result
@@ -21,31 +19,6 @@ WINDOW = 10.0          # s before a result: operands the computing node may stil
 LAG = 3.0              # s after a result: operands the checker may see only after the result
 ABS_TOL = 1e-3         # |result - expected| <= ABS_TOL + REL_TOL * |expected|
 REL_TOL = 1e-4
-
-CRITERIA = [
-    ('1', 'Ровно три узла node1, node2, node3', 'Exactly three nodes node1, node2, node3'),
-    ('2', 'Вычисляющий узел варианта публикует result_<ISU> и слушает два других',
-     'The variant\'s computing node publishes result_<ISU> and subscribes to the other two'),
-    ('3', 'Результат равен операции варианта над двумя числами',
-     'The result equals the variant\'s operation on the two numbers'),
-    ('4', 'Результат публикуется регулярно', 'The result is published repeatedly'),
-]
-
-
-def operations(isu):
-    """The operations that pass for the ISU's variant, the printed one first: a row whose scan
-    can be read two ways lists both (digit 5: printed "+", read "*" by the rows around it)."""
-    op = variant('lab1', isu)['operation']
-    return tuple(op) if isinstance(op, list) else (op,)
-
-
-def roles(isu):
-    """(computing node, (first sender, second sender), printed operation) for the ISU's variant."""
-    v = variant('lab1', isu)
-    comp = v['compute']
-    senders = tuple(n for n in NODES if n != comp)
-    return comp, senders, operations(isu)[0]
-
 
 def apply_op(op, a, b):
     if op == '+':
@@ -136,23 +109,14 @@ def match_results(results, first, second, op, int_result=False):
     return verified, wrong, example
 
 
-def _crit(cid):
-    for c in CRITERIA:
-        if c[0] == cid:
-            return Criterion(*c)
-    raise KeyError(cid)
 
 
 def fmt(x):
     return '%g' % x
 
 
-def evaluate(obs):
-    """Criteria from an observation dict (see grading.observe.Lab1Observer.observation)."""
-    isu = obs['isu']
-    comp, (s1, s2), _ = roles(isu)
-    ops = operations(isu)
-    c1, c2, c3, c4 = (_crit(i) for i in '1234')
+def judge_nodes(c1, obs):
+    """Criterion 1: exactly node1..3, each script executable, none crashed."""
     scripts = sorted(obs.get('scripts', []))
     nodes = sorted(obs.get('nodes', []))
     procs = obs.get('procs', {})
@@ -179,6 +143,11 @@ def evaluate(obs):
     else:
         c1.set(True, reason('работают узлы %s' % ', '.join(nodes), 'running nodes: %s' % ', '.join(nodes)))
 
+
+def judge_topics(c2, obs, isu):
+    """Criterion 2; returns (the result topic or None, {sender: topics the computing node
+    takes from it})."""
+    comp, (s1, s2), _ = roles(isu)
     pubs, subs = obs.get('pubs', {}), obs.get('subs', {})
     cn = '/' + comp
     accepted = result_topics(isu, comp)
@@ -198,58 +167,73 @@ def evaluate(obs):
     else:
         c2.set(True, reason('%s публикует %s, слушает %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2])),
                             '%s publishes %s, subscribes to %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2]))))
+    return res_topic, in_topics
 
+
+def judge_values(c3, obs, isu, res_topic, in_topics):
+    """Criterion 3: every judged result equals the operation on its operands (one reading)."""
+    _, (s1, s2), _ = roles(isu)
+    ops = operations(isu)
     msgs = obs.get('msgs', {})
-    types = obs.get('types', {})
     results = msgs.get(res_topic, []) if res_topic else []
     if not res_topic:
-        c3.set(False, reason('нет топика результата', 'no result topic'))
-    elif not results:
-        c3.set(False, reason('на %s не пришло ни одного числа' % res_topic, 'no number arrived on %s' % res_topic))
-    elif not all(in_topics.values()):
-        c3.set(False, reason('неизвестно, откуда берутся операнды', 'cannot tell where the operands come from'))
-    else:
-        first = sorted(v for t in in_topics[s1] for v in msgs.get(t, []))
-        second = sorted(v for t in in_topics[s2] for v in msgs.get(t, []))
-        int_result = types.get(res_topic, '').split('/')[-1].lower().startswith(('int', 'uint'))
-        # every reading of the variant's row is tried; the one with the fewest wrong results
-        # judges (the printed one on a tie), so a solution follows one reading throughout
-        tried = [(op,) + match_results(results, first, second, op, int_result) for op in ops]
-        op, verified, wrong, ex = min(tried, key=lambda m: m[2])
-        formula = '%s %s %s' % (s1, op, s2)
-        if wrong:
-            r, a, b, _ = ex
-            want = ['%s %s %s = %s %s %s = %s' % (s1, o, s2, fmt(a), o, fmt(b), fmt(apply_op(o, a, b))) for o in ops]
-            alt_ru = ' (строка варианта читается по-разному; годится любое из прочтений)' if len(ops) > 1 else ''
-            alt_en = ' (the row reads two ways; either reading passes)' if len(ops) > 1 else ''
-            c3.set(False, reason('результат %s, а %s (неверно %d из %d; проверены все операнды за %.0f с до и %.0f с после каждого результата)%s' % (fmt(r), ' или '.join(want), wrong, verified, WINDOW, LAG, alt_ru),
-                                 'result %s but %s (%d of %d wrong; every operand from %.0f s before to %.0f s after each result was tried)%s' % (fmt(r), ' or '.join(want), wrong, verified, WINDOW, LAG, alt_en)))
-        elif verified < MIN_RESULTS:
-            c3.set(False, reason('удалось сверить лишь %d результатов (нужно %d)' % (verified, MIN_RESULTS),
-                                 'only %d results could be checked against their operands (%d needed)' % (verified, MIN_RESULTS)))
-        else:
-            other = ' '.join(o for o in ops if o != op)
-            alt_ru = ' (годится и прочтение %s)' % other if other else ''
-            alt_en = ' (the reading %s passes too)' % other if other else ''
-            c3.set(True, reason('%d из %d результатов верны: %s%s' % (verified, verified, formula, alt_ru),
-                                '%d of %d results correct: %s%s' % (verified, verified, formula, alt_en)))
+        return c3.set(False, reason('нет топика результата', 'no result topic'))
+    if not results:
+        return c3.set(False, reason('на %s не пришло ни одного числа' % res_topic, 'no number arrived on %s' % res_topic))
+    if not all(in_topics.values()):
+        return c3.set(False, reason('неизвестно, откуда берутся операнды', 'cannot tell where the operands come from'))
+    first = sorted(v for t in in_topics[s1] for v in msgs.get(t, []))
+    second = sorted(v for t in in_topics[s2] for v in msgs.get(t, []))
+    int_result = obs.get('types', {}).get(res_topic, '').split('/')[-1].lower().startswith(('int', 'uint'))
+    # every reading of the variant's row is tried; the one with the fewest wrong results
+    # judges (the printed one on a tie), so a solution follows one reading throughout
+    tried = [(op,) + match_results(results, first, second, op, int_result) for op in ops]
+    op, verified, wrong, ex = min(tried, key=lambda m: m[2])
+    if wrong:
+        r, a, b, _ = ex
+        want = ['%s %s %s = %s %s %s = %s' % (s1, o, s2, fmt(a), o, fmt(b), fmt(apply_op(o, a, b))) for o in ops]
+        alt_ru = ' (строка варианта читается по-разному; годится любое из прочтений)' if len(ops) > 1 else ''
+        alt_en = ' (the row reads two ways; either reading passes)' if len(ops) > 1 else ''
+        return c3.set(False, reason('результат %s, а %s (неверно %d из %d; проверены все операнды за %.0f с до и %.0f с после каждого результата)%s' % (fmt(r), ' или '.join(want), wrong, verified, WINDOW, LAG, alt_ru),
+                                    'result %s but %s (%d of %d wrong; every operand from %.0f s before to %.0f s after each result was tried)%s' % (fmt(r), ' or '.join(want), wrong, verified, WINDOW, LAG, alt_en)))
+    if verified < MIN_RESULTS:
+        return c3.set(False, reason('удалось сверить лишь %d результатов (нужно %d)' % (verified, MIN_RESULTS),
+                                    'only %d results could be checked against their operands (%d needed)' % (verified, MIN_RESULTS)))
+    formula = '%s %s %s' % (s1, op, s2)
+    other = ' '.join(o for o in ops if o != op)
+    alt_ru = ' (годится и прочтение %s)' % other if other else ''
+    alt_en = ' (the reading %s passes too)' % other if other else ''
+    return c3.set(True, reason('%d из %d результатов верны: %s%s' % (verified, verified, formula, alt_ru),
+                               '%d of %d results correct: %s%s' % (verified, verified, formula, alt_en)))
 
+
+def judge_rate(c4, obs, res_topic):
+    """Criterion 4: at least MIN_RESULTS results, no pause over MAX_GAP (receive times)."""
+    results = obs.get('msgs', {}).get(res_topic, []) if res_topic else []
     if not res_topic or not results:
-        c4.set(False, reason('результат не публикуется', 'the result is not published'))
-    else:
-        ts = [t for t, _ in results]
-        gaps = [b - a for a, b in zip(ts, ts[1:])]
-        end = obs.get('end', ts[-1])
-        gap = max(gaps + [end - ts[-1]])
-        first_after = ts[0] - obs.get('start', ts[0])
-        if len(ts) < MIN_RESULTS:
-            c4.set(False, reason('за %.0f с пришло %d сообщений (нужно ≥ %d)' % (OBSERVE, len(ts), MIN_RESULTS),
-                                 '%d messages in %.0f s (>= %d needed)' % (len(ts), OBSERVE, MIN_RESULTS)))
-        elif gap > MAX_GAP:
-            c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с; по времени приёма у проверяющего)' % (gap, MAX_GAP),
-                                 'a %.1f s pause between results (%.0f s allowed; by the grader\'s receive times)' % (gap, MAX_GAP)))
-        else:
-            rate = (len(ts) - 1) / (ts[-1] - ts[0]) if ts[-1] > ts[0] else 0.0
-            c4.set(True, reason('%d сообщений, %.1f Гц, первое через %.1f с' % (len(ts), rate, first_after),
-                                '%d messages, %.1f Hz, first after %.1f s' % (len(ts), rate, first_after)))
-    return [c1, c2, c3, c4]
+        return c4.set(False, reason('результат не публикуется', 'the result is not published'))
+    ts = [t for t, _ in results]
+    gaps = [b - a for a, b in zip(ts, ts[1:])]
+    end = obs.get('end', ts[-1])
+    gap = max(gaps + [end - ts[-1]])
+    first_after = ts[0] - obs.get('start', ts[0])
+    if len(ts) < MIN_RESULTS:
+        return c4.set(False, reason('за %.0f с пришло %d сообщений (нужно ≥ %d)' % (OBSERVE, len(ts), MIN_RESULTS),
+                                    '%d messages in %.0f s (>= %d needed)' % (len(ts), OBSERVE, MIN_RESULTS)))
+    if gap > MAX_GAP:
+        return c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с; по времени приёма у проверяющего)' % (gap, MAX_GAP),
+                                    'a %.1f s pause between results (%.0f s allowed; by the grader\'s receive times)' % (gap, MAX_GAP)))
+    rate = (len(ts) - 1) / (ts[-1] - ts[0]) if ts[-1] > ts[0] else 0.0
+    return c4.set(True, reason('%d сообщений, %.1f Гц, первое через %.1f с' % (len(ts), rate, first_after),
+                               '%d messages, %.1f Hz, first after %.1f s' % (len(ts), rate, first_after)))
+
+
+def evaluate(obs):
+    """Criteria from an observation dict (see grading.lab1.observer.Lab1Observer.run)."""
+    isu = obs['isu']
+    c = criteria_by_id(CRITERIA)
+    judge_nodes(c['1'], obs)
+    res_topic, in_topics = judge_topics(c['2'], obs, isu)
+    judge_values(c['3'], obs, isu, res_topic, in_topics)
+    judge_rate(c['4'], obs, res_topic)
+    return [c[i] for i in '1234']
