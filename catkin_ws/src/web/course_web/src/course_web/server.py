@@ -57,10 +57,13 @@ def without_token(path):
     return urlunsplit(('', '', parts.path or '/', urlencode(query), ''))
 
 
-def make_handler(www_root, find_package, config, log=None, token=None, auth_issuer=None):
+def make_handler(www_root, find_package, config, log=None, token=None, auth_issuer=None,
+                 routes=None):
     """A request handler class bound to the page's root, a package lookup and the config.
     token: None = no token needed. auth_issuer(client ip, server host) -> the rosauth `auth`
-    message for /rosauth (None: /rosauth is 404)."""
+    message for /rosauth (None: /rosauth is 404). routes: {path: handler(query string) ->
+    (status, content type, body)} answered behind the same token (sim_library's Insert list)."""
+    routes = dict(routes or {})
     config_body = json.dumps(config).encode()
 
     class Handler(BaseHTTPRequestHandler):
@@ -114,6 +117,9 @@ def make_handler(www_root, find_package, config, log=None, token=None, auth_issu
                 host = (self.headers.get('Host') or '').rsplit(':', 1)[0].strip('[]')
                 body = json.dumps(auth_issuer(self.client_address[0], host)).encode()
                 return self._send(200, 'application/json', body, send_body, cache='no-store')
+            if path_only in routes:
+                status, ctype, body = routes[path_only](urlsplit(self.path).query)
+                return self._send(status, ctype, body, send_body)
             try:
                 path = resolve(self.path, www_root, find_package)
                 with open(path, 'rb') as f:
@@ -144,13 +150,13 @@ def make_handler(www_root, find_package, config, log=None, token=None, auth_issu
 
 
 def start_server(address, port, www_root, find_package, config, log=None, token=None,
-                 auth_issuer=None):
+                 auth_issuer=None, routes=None):
     """Starts serving in a daemon thread; returns the server (call .shutdown() to stop)."""
     if not os.path.isfile(os.path.join(www_root, 'index.html')):
         raise ServerError('no index.html in %s' % www_root)
     try:
         httpd = ThreadingHTTPServer((address, port), make_handler(
-            www_root, find_package, config, log, token, auth_issuer))
+            www_root, find_package, config, log, token, auth_issuer, routes))
     except OSError as e:
         raise ServerError('cannot listen on %s:%d: %s (choose another port: roslaunch course_web '
                           'web.launch port:=NNNN)' % (address or '0.0.0.0', port, e.strerror))

@@ -3,12 +3,14 @@
 // from /tf and /tf_static, and one display per topic of a supported type: LaserScan,
 // PointCloud2, OccupancyGrid (maps; costmaps in RViz's costmap colours), Path, PoseArray,
 // Marker and MarkerArray (the simulator's world models come as /gazebo/scene_markers).
+// With a simulator, the scene editor of simedit.js (Insert, move, delete, pause/step, Save World).
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { subscribe, topicTypes, every, el } from '../ros.js';
 import { TfTree } from './tf.js';
 import { parseUrdf } from './urdf.js';
 import * as D from './displays.js';
+import { attachSimEditor } from './simedit.js';
 
 const DISPLAYS = {
   'sensor_msgs/LaserScan': D.laserScan, 'sensor_msgs/PointCloud2': D.pointCloud2,
@@ -23,6 +25,7 @@ const SNAPSHOT_TOPICS = { '/gazebo/scene_markers': 2000 };
 // something subscribes (Gazebo has no such topic; ode_sim's README)
 const ALWAYS_OFFERED = { '/gazebo/scene_markers': 'visualization_msgs/MarkerArray' };
 const FRAME_MS = 100;   // at most 10 frames per second, and only when something changed
+const SCENE = '/gazebo/scene_markers';
 const FIXED_PREFERENCE = ['map', 'odom', 'world', 'base_footprint', 'base_link'];
 const BASE_FRAMES = ['base_footprint', 'base_link'];
 
@@ -93,7 +96,10 @@ export default {
         d.inst = DISPLAYS[type](THREE, topic);
         scene.add(d.inst.object);
         const throttle = SNAPSHOT_TOPICS[topic] || THROTTLE[type] || 0;
-        d.unsub = subscribe(ros, topic, type, m => { d.inst.update(m); dirty = true; }, { throttle_rate: throttle, queue_length: throttle ? 1 : 0 });
+        d.unsub = subscribe(ros, topic, type, m => {
+          d.inst.update(m); dirty = true;
+          if (topic === SCENE) editor.onMarkers();
+        }, { throttle_rate: throttle, queue_length: throttle ? 1 : 0 });
       } else if (!on && d.inst) {
         d.unsub(); scene.remove(d.inst.object); d.inst.dispose && d.inst.dispose(); d.inst = null; dirty = true;
       }
@@ -109,6 +115,8 @@ export default {
         enable(topic, type, box.checked);
       }
       const frames = tf.frames().sort();
+      // a world without TF (empty_world.launch, no robot): the scene markers' frame
+      if (!fixed && !frames.length && displays.has(SCENE)) fixed = 'odom';
       if (!fixed || !frames.includes(fixed)) {
         const pick = FIXED_PREFERENCE.find(f => frames.includes(f)) || tf.roots()[0];
         if (pick && pick !== fixed && !opts.fixed) fixed = pick;
@@ -127,6 +135,11 @@ export default {
       camera.updateProjectionMatrix();
       dirty = true;
     };
+    const editor = attachSimEditor({
+      ros, bar, holder, canvas: renderer.domElement, camera, controls, scene,
+      markers: () => { const d = displays.get(SCENE); return d && d.inst; },
+      toFixed: frame => tf.lookup(frame, fixed), dirty: () => { dirty = true; },
+    });
     fit();
 
     let raf = 0, last = 0, lastBase = null;
@@ -142,6 +155,7 @@ export default {
       dirty = false;
       if (robot) robot.links.forEach((o, name) => { place(o, name); o.visible = o.visible && showRobot.checked; });
       for (const d of displays.values()) if (d.inst) d.inst.place((obj, frame) => place(obj, frame));
+      editor.afterPlace();
       if (follow.checked) {
         const base = BASE_FRAMES.map(f => tf.lookup(f, fixed)).find(Boolean);
         if (base) {
@@ -163,9 +177,10 @@ export default {
         fixed, frames: tf.frames(), links: robot ? robot.links.size : 0, robotVisuals: robot ? robot.visuals : 0,
         visibleLinks: robot ? [...robot.links.values()].filter(o => o.visible).length : 0,
         displays: Object.fromEntries([...displays].map(([t, d]) => [t, d.inst ? d.inst.stats() : null])),
+        sim: editor.stats(),
       }),
       destroy: () => {
-        cancelAnimationFrame(raf); stopRefresh(); clearInterval(robotTimer); unsubs.forEach(u => u());
+        cancelAnimationFrame(raf); stopRefresh(); editor.destroy(); clearInterval(robotTimer); unsubs.forEach(u => u());
         displays.forEach(d => d.unsub && d.unsub()); controls.dispose(); renderer.dispose(); renderer.forceContextLoss();
       },
     };
