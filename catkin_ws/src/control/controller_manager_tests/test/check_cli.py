@@ -107,5 +107,44 @@ class CliTest(unittest.TestCase):
         self.assertIn('Restarted controllers: velocity_j2', out)
 
 
+    def test_controller_group(self):
+        """`controller_group list|spawn|switch` over ~controller_groups (here the global one)."""
+        rospy.set_param('/controller_groups', {'drive': ['velocity_j2', 'state'],
+                                               'arm': ['velocity_j3', 'state'],
+                                               'broken': ['unknown_type']})
+
+        def group(*args):
+            p = subprocess.run(['rosrun', 'controller_manager', 'controller_group'] + list(args),
+                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                               timeout=WAIT)
+            return p.returncode, p.stdout
+
+        try:
+            rc, out = group('list')
+            self.assertEqual(0, rc, out)
+            self.assertEqual('Number of groups: 3\n  arm\n      velocity_j3\n      state\n'
+                             '  broken\n      unknown_type\n  drive\n      velocity_j2\n'
+                             '      state\n', out)
+            rc, out = group('spawn', 'drive')
+            self.assertEqual(0, rc, out)
+            self.assertEqual({'velocity_j2': 'running', 'state': 'running'}, self.cm.states())
+            rc, out = group('switch', 'arm')
+            self.assertEqual(0, rc, out)
+            self.assertIn("Loaded 'velocity_j3'", out)
+            self.assertIn("Started ['velocity_j3'] successfully", out)
+            self.assertIn("Stopped ['velocity_j2'] successfully", out)
+            self.assertEqual({'velocity_j2': 'stopped', 'velocity_j3': 'running',
+                              'state': 'running'}, self.cm.states())
+            rc, out = group('switch', 'broken')
+            self.assertEqual(1, rc, out)
+            self.assertIn('Cancel group switching', out)
+            self.assertEqual('running', self.cm.states()['velocity_j3'])
+            rc, out = group('switch', 'nothing')
+            self.assertEqual(1, rc, out)
+            self.assertIn('There is no controller defined in group nothing', out)
+        finally:
+            rospy.delete_param('/controller_groups')
+
+
 if __name__ == '__main__':
     rostest.rosrun('controller_manager_tests', 'check_cli', CliTest)
