@@ -26,7 +26,7 @@ import numpy as np
 
 import course_runtime
 from course_runtime import Proc, RosCore
-from space_scanner_bringup import metrics
+from space_scanner_bringup import metrics, pace
 
 GOALS = [   # (x, y) in the office: middle room, the corridor, left room, right room, back home
     (1.0, -1.0), (0.0, 3.0), (-3.5, -2.5), (3.5, -2.5), (0.0, 0.0)]
@@ -34,48 +34,69 @@ GOALS = [   # (x, y) in the office: middle room, the corridor, left room, right 
 
 class Recorder:
     """Ground truth (the simulator's model state of `robot`) and the estimated pose (TF
-    map -> base_footprint), both stamped with simulated time."""
+    map -> base_footprint), both stamped with simulated time, sampled every TRUTH_PERIOD
+    simulated seconds by one polling thread. The truth comes from /gazebo/get_model_state
+    (its header carries the simulated time of the pose), not from /gazebo/model_states: that
+    topic is published every physics step while anyone subscribes (as Gazebo does), a thousand
+    messages of every model per simulated second that the simulator would build and this
+    process decode only to keep ten of them."""
+
+    TRUTH_PERIOD = 0.1      # simulated s between ground-truth samples
+    TF_PERIOD = 0.2         # simulated s between estimate samples
 
     def __init__(self):
         import rospy
         import tf2_ros
-        from gazebo_msgs.msg import ModelStates
+        from gazebo_msgs.srv import GetModelState
         self.rospy = rospy
         self.lock = threading.Lock()
         self.truth, self.estimate = [], []
         self.buf = tf2_ros.Buffer()
         self.listener = tf2_ros.TransformListener(self.buf)
-        self.sub = rospy.Subscriber('/gazebo/model_states', ModelStates, self.on_states, queue_size=1)
-        self.last = -1.0
+        rospy.wait_for_service('/gazebo/get_model_state', timeout=120)
+        self.get_state = rospy.ServiceProxy('/gazebo/get_model_state', GetModelState,
+                                            persistent=True)
         self.running = True
-        self.thread = threading.Thread(target=self.poll_tf, daemon=True)
+        self.thread = threading.Thread(target=self.poll, daemon=True)
         self.thread.start()
 
-    def on_states(self, msg):
-        t = self.rospy.get_time()
-        if 'robot' not in msg.name or t - self.last < 0.1:
+    def sample_truth(self):
+        try:
+            res = self.get_state('robot', '')
+        except Exception:   # the simulator is going away: keep what we have
             return
-        self.last = t
-        p = msg.pose[msg.name.index('robot')].position
+        if not res.success:
+            return
+        t = res.header.stamp.to_sec()
         with self.lock:
-            self.truth.append((t, p.x, p.y))
+            if not self.truth or t - self.truth[-1][0] >= self.TRUTH_PERIOD - 1e-6:
+                self.truth.append((t, res.pose.position.x, res.pose.position.y))
 
-    def poll_tf(self):
+    def sample_estimate(self):
+        import rospy
+        try:
+            tr = self.buf.lookup_transform('map', 'base_footprint', rospy.Time(0))
+        except Exception:   # no map yet: keep polling
+            return
+        t = tr.header.stamp.to_sec()
+        with self.lock:
+            if not self.estimate or t - self.estimate[-1][0] >= self.TF_PERIOD - 1e-6:
+                self.estimate.append((t, tr.transform.translation.x, tr.transform.translation.y))
+
+    def poll(self):
         import rospy
         while self.running and not rospy.is_shutdown():
-            try:
-                tr = self.buf.lookup_transform('map', 'base_footprint', rospy.Time(0))
-                t = tr.header.stamp.to_sec()
-                with self.lock:
-                    if not self.estimate or t > self.estimate[-1][0]:
-                        self.estimate.append((t, tr.transform.translation.x, tr.transform.translation.y))
-            except Exception:   # no map yet: keep polling
-                pass
-            time.sleep(0.2)
+            self.sample_truth()
+            self.sample_estimate()
+            time.sleep(0.05)     # wall seconds: every 0.1 s simulated at up to 2x real time
 
     def stop(self):
         self.running = False
-        self.sub.unregister()
+        self.thread.join(timeout=5.0)
+        try:
+            self.get_state.close()
+        except Exception:
+            pass
 
     def take(self):
         with self.lock:
@@ -98,7 +119,7 @@ def sim_now():
 
 
 def explore(out, env, display, sim_budget, say):
-    """Phase 1: returns (sim seconds, finished, truth, estimate)."""
+    """Phase 1: returns (sim seconds, finished, truth, estimate, map base, pace figures)."""
     log = os.path.join(out, 'explore.log')
     args = ['roslaunch', 'space_scanner_bringup', 'explore.launch', 'sim:=true',
             'rviz:=%s' % ('true' if display else 'false')]
@@ -107,6 +128,8 @@ def explore(out, env, display, sim_budget, say):
         import rospy
         wait_for(lambda: sim_now() > 0, 300, 'the simulation clock (see %s)' % log)
         rec = Recorder()
+        meter = pace.PhaseMeter(sim_now)
+        mark = meter.start(launch.pid)
         t0 = sim_now()
         say('exploring the office (simulated-time budget %.0f s)' % sim_budget)
         finished = False
@@ -120,9 +143,15 @@ def explore(out, env, display, sim_budget, say):
                 raise RuntimeError('explore.launch stopped (see %s)' % log)
             if sim_now() - last_report > 60:
                 last_report = sim_now()
-                say('  %.0f s of simulated time explored' % (last_report - t0))
+                f = meter.figures(mark)
+                mark = f['point']
+                say('  %.0f s of simulated time explored; the last %.0f s at %.2fx real time, '
+                    '%.2f CPU s per simulated s' % (last_report - t0, f['sim_s'], f['rtf'],
+                                                    f['cpu_per_sim_s']))
             time.sleep(1.0)
         elapsed = sim_now() - t0
+        figures = meter.figures()
+        say(pace.describe('exploration', figures))
         rec.stop()
         truth, estimate = rec.take()
         base = os.path.join(out, 'office_map')
@@ -130,13 +159,14 @@ def explore(out, env, display, sim_budget, say):
                            capture_output=True, text=True, timeout=120)
         if r.returncode != 0:
             raise RuntimeError('map_saver failed: %s' % (r.stdout + r.stderr)[-500:])
-        return elapsed, finished, truth, estimate, base
+        return elapsed, finished, truth, estimate, base, figures
     finally:
         launch.stop()
 
 
 def navigate(out, env, display, map_yaml, goal_budget, say):
-    """Phase 3: returns ([(goal, state, sim seconds, path length)], truth, estimate)."""
+    """Phase 3: returns ([(goal, state, sim seconds, path length, rtf)], truth, estimate, pace
+    figures)."""
     import actionlib
     import rospy
     from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
@@ -153,6 +183,8 @@ def navigate(out, env, display, map_yaml, goal_budget, say):
         wait_for(lambda: 0 < sim_now() < old_clock or (old_clock == 0 and sim_now() > 0), 300,
                  'the simulation clock (see %s)' % log)
         rec = Recorder()
+        meter = pace.PhaseMeter(sim_now)
+        meter.start(launch.pid)
         client = actionlib.SimpleActionClient('move_base', MoveBaseAction)
         if not client.wait_for_server(rospy.Duration(300)):
             raise RuntimeError('no move_base action server (see %s)' % log)
@@ -163,6 +195,7 @@ def navigate(out, env, display, map_yaml, goal_budget, say):
             goal.target_pose.pose.position.x, goal.target_pose.pose.position.y = gx, gy
             goal.target_pose.pose.orientation.w = 1.0
             t0 = sim_now()
+            w0 = time.monotonic()
             with rec.lock:
                 start = len(rec.truth)
             client.send_goal(goal)
@@ -175,13 +208,17 @@ def navigate(out, env, display, map_yaml, goal_budget, say):
             state = client.get_state()
             with rec.lock:
                 driven = metrics.path_length(rec.truth[start:])
-            results.append(((gx, gy), state, sim_now() - t0, driven))
-            say('  goal (%.1f, %.1f): %s in %.0f s, %.1f m driven' % (
+            took, wall = sim_now() - t0, time.monotonic() - w0
+            rtf = took / wall if wall > 0 else 0.0
+            results.append(((gx, gy), state, took, driven, rtf))
+            say('  goal (%.1f, %.1f): %s in %.0f s, %.1f m driven (%.2fx real time)' % (
                 gx, gy, 'reached' if state == 3 else 'NOT reached (state %d)' % state,
-                sim_now() - t0, driven))
+                took, driven, rtf))
+        figures = meter.figures()
+        say(pace.describe('navigation', figures))
         rec.stop()
         truth, estimate = rec.take()
-        return results, truth, estimate
+        return results, truth, estimate, figures
     finally:
         launch.stop()
 
@@ -276,7 +313,8 @@ def main(argv=None):
                        env=env, log=web_log)
             say('web view: %s (log %s)' % (printed_web_url(web_log, args.web_port), web_log))
         t_wall = time.monotonic()
-        elapsed, finished, truth1, est1, base = explore(out, env, display, args.explore_time, say)
+        elapsed, finished, truth1, est1, base, pace1 = explore(out, env, display,
+                                                               args.explore_time, say)
         say('exploration %s after %.0f s of simulated time; map saved to %s.yaml/.pgm' % (
             'finished' if finished else 'stopped at its budget', elapsed, base))
         draw_path(base + '.yaml', truth1, base + '_path.png')
@@ -286,7 +324,8 @@ def main(argv=None):
         quality = metrics.map_quality(load_grid(base + '.yaml'), load_grid(truth_map))
         slam_ate = metrics.ate(est1, truth1) if est1 else (float('nan'), float('nan'))
         rospy.set_param('/use_sim_time', True)
-        results, truth2, est2 = navigate(out, env, display, base + '.yaml', args.goal_time, say)
+        results, truth2, est2, pace2 = navigate(out, env, display, base + '.yaml',
+                                                args.goal_time, say)
         amcl_ate = metrics.ate(est2, truth2) if est2 else (float('nan'), float('nan'))
         reached = sum(1 for r in results if r[1] == 3)
         summary = {
@@ -300,6 +339,12 @@ def main(argv=None):
             'goals_reached': reached, 'goals': len(results),
             'goal_times_sim_s': [round(r[2], 1) for r in results],
             'wall_s': round(time.monotonic() - t_wall, 1),
+            # achieved real-time factor and the stack's CPU seconds per simulated second
+            'exploration_rtf': round(pace1['rtf'], 3),
+            'exploration_cpu_per_sim_s': round(pace1['cpu_per_sim_s'], 3),
+            'navigation_rtf': round(pace2['rtf'], 3),
+            'navigation_cpu_per_sim_s': round(pace2['cpu_per_sim_s'], 3),
+            'goal_rtf': [round(r[4], 3) for r in results],
         }
         with open(os.path.join(out, 'summary.json'), 'w') as f:
             json.dump(summary, f, indent=1)
@@ -313,6 +358,10 @@ def main(argv=None):
             ('AMCL ATE', 'RMS %.3f m, max %.3f m' % amcl_ate),
             ('goals reached', '%d of %d; times %s s sim' % (reached, len(results), summary['goal_times_sim_s'])),
             ('wall time', '%.0f s' % summary['wall_s']),
+            ('real-time factor', 'exploration %.2fx, navigation %.2fx (simulated s per wall s)'
+             % (pace1['rtf'], pace2['rtf'])),
+            ('stack CPU', 'exploration %.2f, navigation %.2f CPU s per simulated s (of 2 cores)'
+             % (pace1['cpu_per_sim_s'], pace2['cpu_per_sim_s'])),
         ]
         print('\n=== main demo summary (%s)' % out)
         for k, v in rows:
