@@ -1,9 +1,10 @@
 #!/usr/bin/python3
 """sim_rtf --launch's listener: drives the launched robot and counts what the graph publishes.
 
-launch_listener.py DRIVE SENSOR... where DRIVE is `twist:TOPIC` (Twist 0.2 m/s, 0.3 rad/s) or
+launch_listener.py DRIVE SENSOR... where DRIVE is `twist:TOPIC` (Twist 0.2 m/s, 0.3 rad/s),
 `position:TOPIC,TOPIC` (std_msgs/Float64 position targets 2 rad per simulated second ahead,
-so position-controlled wheels keep turning) and each SENSOR is `TOPIC=pkg/Type`.
+so position-controlled wheels keep turning) or `none` (the launch drives the robot itself) and
+each SENSOR is `TOPIC=pkg/Type`.
 Commands are sent every 0.05 simulated s (on /clock), so a controller's cmd_vel_timeout never
 stops the robot however fast the simulation runs. Prints `ready`; SIGUSR1 starts the measured
 window (counters reset), SIGINT ends it and prints one JSON line: per sensor the messages, the
@@ -58,8 +59,10 @@ def main(argv):
         c[1] += len(msg.transforms)
     rospy.Subscriber('/tf', TFMessage, on_tf, queue_size=10000)
 
-    kind, topics = drive.split(':', 1)
-    if kind == 'twist':
+    kind, topics = drive.split(':', 1) if ':' in drive else (drive, '')
+    if kind == 'none':
+        pubs, make = [], None
+    elif kind == 'twist':
         from geometry_msgs.msg import Twist
         pubs = [rospy.Publisher(topics, Twist, queue_size=1)]
         cmd = Twist()
@@ -70,7 +73,7 @@ def main(argv):
         pubs = [rospy.Publisher(t, Float64, queue_size=1) for t in topics.split(',')]
         make = lambda t: Float64(2.0 * t + 2.0)     # noqa: E731
     else:
-        raise SystemExit('launch_listener: drive must be twist:TOPIC or position:TOPIC,...')
+        raise SystemExit('launch_listener: drive must be twist:TOPIC, position:TOPIC,... or none')
     last = [-1.0]
 
     def on_clock(msg):
