@@ -1,6 +1,7 @@
 """The rest of gazebo_ros' surface on sim_node, driven as a user would (roslaunch
 gazebo_ros empty_world.launch, then services, topics and dynamic_reconfigure from a client
-process): enable_ros_network, the topics Gazebo advertises and no others, every service's
+process): enable_ros_network, the topics Gazebo advertises and no others (besides the window
+API of ode_sim_msgs, OURS_*), every service's
 fields and status texts, efforts in a sim-time window, the physics reconfigure."""
 import json
 import os
@@ -24,6 +25,9 @@ GAZEBO_SERVICES = [
     'set_link_properties', 'set_link_state', 'set_logger_level', 'set_model_configuration',
     'set_model_state', 'set_parameters', 'set_physics_properties', 'spawn_sdf_model',
     'spawn_urdf_model', 'unpause_physics']
+# what gzclient gets from gzserver over Gazebo transport (ros/world_control.py, ode_sim_msgs)
+OURS_TOPICS = ['/gazebo/world_stats']
+OURS_SERVICES = ['get_world_sdf', 'step_world']
 
 
 def launch(roscore, tmp_path, *args):
@@ -57,8 +61,9 @@ def test_topics_and_services_are_gazebos_and_scene_markers_come_when_subscribed(
         out = client(roscore, p, 'graph', '--markers', '--metrics')
     finally:
         p.stop()
-    assert out['topics'] == GAZEBO_TOPICS          # no /tf, no /gazebo/scene_markers
-    assert out['services'] == ['/gazebo/' + s for s in GAZEBO_SERVICES]
+    # no /tf, no /gazebo/scene_markers
+    assert out['topics'] == sorted(GAZEBO_TOPICS + OURS_TOPICS)
+    assert out['services'] == ['/gazebo/' + s for s in sorted(GAZEBO_SERVICES + OURS_SERVICES)]
     assert out['markers'] >= 2                     # DELETEALL + the ground plane
     rtf, stamp, _sensors = out['metrics']          # paced at 1000 steps of 1 ms per second
     assert 0 < rtf <= 1.1 and stamp > 0
