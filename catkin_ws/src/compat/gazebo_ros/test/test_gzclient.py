@@ -1,47 +1,26 @@
-"""gzclient: headless it says where the scene is and exits 0; with a display it is RViz on
-ode_sim's config/scene.rviz, which shows /gazebo/scene_markers in the odom frame."""
+"""gzclient is the simulator's window (ode_sim_gui): headless one line and exit 0; on a display
+a window titled "Gazebo" that registers as the launch's node, draws the simulator's world, and
+closes with one line when the simulator exits; `gazebo` runs the server and the window."""
 import os
+import signal
 import subprocess
 import time
-
-import pytest
 
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
 from gazebo_ros import gzclient
 
-
-def test_command_line():
-    env = {'DISPLAY': ':5'}
-    assert gzclient.client_command(['--verbose', '__name:=gazebo_gui', '__log:=/x.log'], env,
-                                   '/c/scene.rviz') == [
-        'rviz', '-d', '/c/scene.rviz', '__name:=gazebo_gui', '__log:=/x.log']
-    assert gzclient.client_command([], {}, '/c/scene.rviz') is None
-    assert gzclient.client_command([], {'DISPLAY': ''}, '/c/scene.rviz') is None
-
-
-def test_scene_config_exists():
-    path = gzclient.scene_config()
-    assert path.endswith('ode_sim/config/scene.rviz') and os.path.isfile(path)
-    text = open(path).read()
-    for needle in ('Fixed Frame: odom', 'Marker Topic: /gazebo/scene_markers', 'Topic: /scan',
-                   'Image Topic: /camera/image_raw', 'Robot Description: robot_description'):
-        assert needle in text
-
-
-def test_headless_one_line_exit_0(roscore):
-    env = dict(roscore.env)
-    env.pop('DISPLAY', None)
-    out = subprocess.run(['rosrun', 'gazebo_ros', 'gzclient', '__name:=gazebo_gui'], env=env,
-                         capture_output=True, text=True, timeout=30)
-    assert out.returncode == 0
-    assert out.stdout.splitlines() == ['[INFO] ' + gzclient.NO_DISPLAY]
-    assert out.stderr == ''
-
-
-MARKER = ('markers: [{header: {frame_id: odom}, ns: test, id: 1, type: 1, action: 0, '
-          'pose: {position: {x: 0, y: 0, z: 0.5}, orientation: {w: 1}}, '
-          'scale: {x: 3, y: 3, z: 1}, color: {r: 1.0, g: 0.0, b: 0.0, a: 1.0}}]')
+WORLD = """<?xml version="1.0"?>
+<sdf version="1.6"><world name="default">
+  <light name="sun" type="directional"><direction>-0.5 0.1 -0.9</direction>
+    <diffuse>0.8 0.8 0.8 1</diffuse></light>
+  <model name="red_block"><static>true</static><pose>0 0 0.75 0 0 0</pose><link name="link">
+    <collision name="c"><geometry><box><size>1.5 1.5 1.5</size></box></geometry></collision>
+    <visual name="v"><geometry><box><size>1.5 1.5 1.5</size></box></geometry>
+      <material><ambient>1 0 0 1</ambient><diffuse>1 0 0 1</diffuse></material></visual>
+  </link></model>
+</world></sdf>
+"""
 
 
 def red_pixels(path):
@@ -50,35 +29,79 @@ def red_pixels(path):
     return int(((r > 120) & (g < 0.35 * r) & (b < 0.35 * r)).sum())
 
 
-def test_display_runs_rviz_on_the_scene(roscore, screen, tmp_path):
+def window_names(display):
+    out = subprocess.run(['xwininfo', '-display', display, '-root', '-tree'],
+                         capture_output=True, text=True, timeout=20).stdout
+    return out
+
+
+def test_headless_one_line_exit_0(roscore):
+    env = dict(roscore.env)
+    env.pop('DISPLAY', None)
+    env.pop('QT_QPA_PLATFORM', None)
+    out = subprocess.run(['rosrun', 'gazebo_ros', 'gzclient', '__name:=gazebo_gui'], env=env,
+                         capture_output=True, text=True, timeout=30)
+    assert out.returncode == 0
+    assert out.stdout.splitlines() == ['[INFO] ' + gzclient.NO_DISPLAY]
+    assert out.stderr == ''
+
+
+def wait_red(display, shot, proc, count=2000, timeout=120):
+    deadline = time.monotonic() + timeout
+    n = 0
+    while time.monotonic() < deadline and n < count:
+        assert proc.alive(), proc.output()[-3000:]
+        time.sleep(1.0)
+        screenshot(display, shot)
+        n = red_pixels(shot)
+    assert n >= count, 'the red block is not drawn (%d red pixels)' % n
+
+
+def test_window_draws_the_world_and_closes_with_the_simulator(roscore, screen, tmp_path):
     env = dict(roscore.env, DISPLAY=screen.display)
     env.pop('QT_QPA_PLATFORM', None)
+    world = tmp_path / 'red.world'
+    world.write_text(WORLD)
+    # the window first: it waits for the simulator, as gzclient waits for gzserver
     client = Proc(['rosrun', 'gazebo_ros', 'gzclient', '__name:=gazebo_gui'], env=env,
                   log=str(tmp_path / 'gzclient.log'))
-    pub = Proc(['rostopic', 'pub', '-r', '2', '/gazebo/scene_markers',
-                'visualization_msgs/MarkerArray', MARKER], env=env,
-               log=str(tmp_path / 'pub.log'))
+    sim = Proc(['rosrun', 'ode_sim', 'sim_node', str(world)], env=env,
+               log=str(tmp_path / 'sim.log'))
     try:
-        # exec: the same process is now RViz, on ode_sim's scene configuration
-        def cmdline():
-            with open('/proc/%d/cmdline' % client.pid, 'rb') as f:
-                return f.read().split(b'\0')
-        wait_for(lambda: b'-d' in cmdline(), 20, what='gzclient to exec rviz')
-        argv = [a.decode() for a in cmdline() if a]
-        assert os.path.basename(argv[0]) == 'rviz' or argv[0].endswith('/rviz'), argv
-        assert argv[1:] == ['-d', gzclient.scene_config(), '__name:=gazebo_gui']
-        shot = str(tmp_path / 'gzclient.png')
-        deadline = time.monotonic() + 60
-        count = 0
-        while time.monotonic() < deadline and count < 2000:
-            assert client.alive(), client.output()[-3000:]
-            time.sleep(1.0)
-            screenshot(screen.display, shot)
-            count = red_pixels(shot)
-        assert count >= 2000, 'the red scene marker is not drawn (%d red pixels)' % count
+        wait_red(screen.display, str(tmp_path / 'gzclient.png'), client)
+        assert '"Gazebo"' in window_names(screen.display)
         nodes = subprocess.run(['rosnode', 'list'], env=env, capture_output=True, text=True,
                                timeout=20).stdout.split()
         assert '/gazebo_gui' in nodes
+        # the simulator exits: the window closes with one line, exit 0
+        sim.stop()
+        wait_for(lambda: not client.alive(), 60, what='the window to close')
+        assert client.popen.returncode == 0
+        assert ('[INFO] gzclient: the simulator (/gazebo) has exited; closing the window'
+                in client.output().splitlines())
     finally:
-        pub.stop()
         client.stop()
+        sim.stop()
+
+
+def test_gazebo_runs_server_and_window(roscore, screen, tmp_path):
+    env = dict(roscore.env, DISPLAY=screen.display)
+    env.pop('QT_QPA_PLATFORM', None)
+    world = tmp_path / 'red.world'
+    world.write_text(WORLD)
+    both = Proc(['rosrun', 'gazebo_ros', 'gazebo', str(world)], env=env,
+                log=str(tmp_path / 'gazebo.log'))
+    try:
+        wait_red(screen.display, str(tmp_path / 'gazebo.png'), both)
+        nodes = subprocess.run(['rosnode', 'list'], env=env, capture_output=True, text=True,
+                               timeout=20).stdout.split()
+        assert '/gazebo' in nodes
+        assert any(n.startswith('/gzclient') for n in nodes), nodes
+        # closing the window (here: its process ends) stops the server too, as Gazebo's
+        os.killpg(both.pid, signal.SIGINT)
+        wait_for(lambda: not both.alive(), 60, what='gazebo to stop')
+        nodes = subprocess.run(['rosnode', 'list'], env=env, capture_output=True, text=True,
+                               timeout=20).stdout.split()
+        assert '/gazebo' not in nodes and not any(n.startswith('/gzclient') for n in nodes)
+    finally:
+        both.stop()
