@@ -7,7 +7,7 @@ import pytest
 from grading import classgrade, sandbox
 from grading.checker import foreign_publishers, tampered
 from grading.common import LABS_DIR, Criterion
-from grading.lab2 import topic_owners
+from grading.lab2.rules import topic_owners
 
 
 @pytest.fixture(scope='module')
