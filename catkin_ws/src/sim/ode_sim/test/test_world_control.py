@@ -2,7 +2,7 @@
 inserts a model:// include, a box, a URDF robot and a light, moves one, deletes one, pauses and
 steps 100 steps (sim time + 100 x step exactly), reads /gazebo/world_stats and saves the world
 through /gazebo/get_world_sdf; sim_node restarted on the saved file has the same models at the
-same poses (and the robot's joint where it was)."""
+same poses (and the robot's joint where it was, its ros_control bridge serving it)."""
 import json
 import math
 import os
@@ -89,7 +89,14 @@ def test_insert_move_delete_step_save_and_reload(roscore, tmp_path):
     assert before['models']['box_a'][:2] == pytest.approx([3, 3], abs=0.01)
     assert before['joints']['shoulder'] == pytest.approx(0.6, abs=0.02)
 
-    # restart on the saved file (paused, so nothing moves before we look)
+    assert out['control_joints'] == ['shoulder']
+    # restart on the saved file (paused, so nothing moves before we look); the arm's URDF on the
+    # parameter server, as its launch file puts it: gazebo_ros_control reads the
+    # transmissions from there (the saved SDF has none, as Gazebo's)
+    urdf = subprocess.run(['/usr/bin/python3', CLIENT, 'arm_urdf'], env=roscore.env,
+                          capture_output=True, text=True, timeout=120, check=True).stdout
+    subprocess.run(['rosparam', 'set', '/arm/robot_description', urdf], env=roscore.env,
+                   check=True, timeout=120)
     node = sim(roscore, saved, tmp_path / 'sim2.log', '-u')
     try:
         after = client(roscore, node, 'state')
@@ -102,4 +109,5 @@ def test_insert_move_delete_step_save_and_reload(roscore, tmp_path):
         assert same_pose(after['links'][name], p, 1e-6), (name, after['links'][name], p)
     assert after['joints']['shoulder'] == pytest.approx(before['joints']['shoulder'], abs=1e-6)
     assert after['lights'] == {'sun': True, 'lamp_1': True}
+    assert after['control_joints'] == ['shoulder']
     assert math.isclose(after['sim_time'], 0.0, abs_tol=1e-9)

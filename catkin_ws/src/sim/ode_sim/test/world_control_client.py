@@ -5,7 +5,9 @@
       move one, delete one, step while running (refused), pause, step 100, read the statistics,
       save the world to SAVED_FILE; prints one JSON object of observations
   world_control_client.py state             the models' poses, the robots' link poses and joint
-      positions, the lights (after a restart on the saved file); prints one JSON object
+      positions, the lights, the joints of the arm's ros_control bridge (after a restart on the
+      saved file); prints one JSON object
+  world_control_client.py arm_urdf          prints the arm's URDF (the robot_description)
 """
 import json
 import sys
@@ -30,6 +32,11 @@ ARM = """<?xml version="1.0"?>
     <origin xyz="0 0 0.3"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="10" velocity="1"/>
     <dynamics damping="5"/></joint>
   <gazebo reference="base"><material>Gazebo/Blue</material></gazebo>
+  <transmission name="shoulder_trans"><type>transmission_interface/SimpleTransmission</type>
+    <joint name="shoulder"><hardwareInterface>hardware_interface/EffortJointInterface</hardwareInterface></joint>
+    <actuator name="shoulder_motor"><mechanicalReduction>1</mechanicalReduction></actuator></transmission>
+  <gazebo><plugin name="gazebo_ros_control" filename="libgazebo_ros_control.so">
+    <controllerNode>false</controllerNode></plugin></gazebo>
 </robot>"""
 
 BOX = """<?xml version="1.0"?>
@@ -82,6 +89,21 @@ def state():
     lp = svc('/gazebo/get_light_properties', gs.GetLightProperties)
     out['lights'] = {n: lp(n).success for n in ('sun', 'lamp_1')}
     return out
+
+
+def control_joints():
+    """The joints the arm's ros_control bridge serves (its state topic, over a few steps of
+    the paused world)."""
+    from sensor_msgs.msg import JointState
+    got = []
+    sub = rospy.Subscriber('/arm/ode_sim/joint_states', JointState, lambda m: got.append(m))
+    step = svc('/gazebo/step_world', StepWorld)
+    deadline = time.monotonic() + 60
+    while not got and time.monotonic() < deadline:
+        step(5)
+        time.sleep(0.1)
+    sub.unregister()
+    return list(got[-1].name) if got else []
 
 
 def edit(saved_file):
@@ -142,6 +164,7 @@ def edit(saved_file):
     with open(saved_file, 'w') as f:
         f.write(res.sdf)
     out['state'] = state()
+    out['control_joints'] = control_joints()
     return out
 
 
@@ -149,8 +172,12 @@ def main(argv):
     rospy.init_node('world_control_client', anonymous=True)
     if argv[1] == 'edit':
         out = edit(argv[2])
+    elif argv[1] == 'arm_urdf':
+        print(ARM)
+        return
     else:
         out = state()
+        out['control_joints'] = control_joints()
     print(json.dumps(out))
 
 

@@ -133,10 +133,28 @@ class GazeboRosControl(Plugin):
             self._start_inprocess()
 
     # ------------------------------------------------------------------ setup
+    def _transmissions(self):
+        """The model's <transmission>s; a model loaded from SDF (a saved world) has none, and
+        gets them as gazebo_ros_control does: from the URDF on the parameter server (robotParam,
+        looked up in the robot's namespace, then as given)."""
+        if self.model.desc.transmissions or not self.ctx.io.live:
+            return self.model.desc.transmissions
+        from ode_sim.description.model import ModelError
+        from ode_sim.description.urdf import parse_urdf
+        for name in (self.topic(self.robot_param), self.robot_param):
+            text = rospy.get_param(name, None)
+            if isinstance(text, str) and text.strip():
+                try:
+                    return parse_urdf(text, 'param %s' % name, self.model.name).transmissions
+                except ModelError as e:
+                    rospy.logwarn('gazebo_ros_control: %s' % e)
+                    return []
+        return []
+
     def _joints_from_transmissions(self):
         out = []
         seen = set()
-        for t in self.model.desc.transmissions:
+        for t in self._transmissions():
             if not t.joints:
                 rospy.logwarn("Transmission %s has no associated joints." % t.name)
                 continue
