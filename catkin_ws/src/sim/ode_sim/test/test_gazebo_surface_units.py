@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from ode_sim.description.model import Physics
-from ode_sim.ros.gazebo_api import Job, light_attenuations
+from ode_sim.ros.gazebo_forces import Job
+from ode_sim.ros.gazebo_lights import light_attenuations
 from ode_sim.ros.physics_reconfigure import (PARAMETERS, PhysicsReconfigure, config_from_state,
                                              physics_config_type, request_from_config)
 

@@ -7,7 +7,7 @@ import ode
 
 from ode_sim.description.model import ModelError
 from ode_sim.description.transforms import (Pose, qmul, qnormalize, qrotate,
-                                            quat_from_axis_angle)
+                                            quat_from_axis_angle, quat_to_matrix)
 
 ENV = ode.environment
 
@@ -145,6 +145,38 @@ class SimLink:
         self.body.setQuaternion(ode_q(target.q))
         self.body.setLinearVel(tuple(float(v) for v in linear))
         self.body.setAngularVel(tuple(float(v) for v in angular))
+
+    def set_inertial(self, mass, inertia, com, gravity):
+        """set_link_properties: `mass`, `inertia` (ixx, iyy, izz, ixy, ixz, iyz about the
+        centre of mass, in the inertial frame's axes), the centre of mass position `com` (link
+        frame) and the gravity mode; the link frame stays where it is."""
+        ine = self.desc.inertial
+        if ine is not None:
+            ine.mass = float(mass)
+            ine.ixx, ine.iyy, ine.izz, ine.ixy, ine.ixz, ine.iyz = (float(v) for v in inertia)
+            ine.pose = Pose(tuple(com), ine.pose.q)
+        self.desc.gravity = bool(gravity)
+        body = self.body
+        if body is None or ine is None:
+            return
+        frame = self.pose()
+        lin, ang = self.velocity()
+        r = quat_to_matrix(ine.pose.q)
+        tensor = r @ ine.tensor() @ r.T
+        m = ode.Mass()
+        m.setParameters(max(ine.mass, 1e-9), 0, 0, 0, tensor[0, 0], tensor[1, 1], tensor[2, 2],
+                        tensor[0, 1], tensor[0, 2], tensor[1, 2])
+        body.setMass(m)
+        body.setGravityMode(bool(gravity))
+        com = Pose(ine.pose.p)
+        self.com = com
+        self._com_inv = com.inverse()
+        self._ci_p, self._ci_q = self._com_inv.tuples()
+        bp = frame * com
+        body.setPosition(tuple(float(v) for v in bp.p))
+        body.setQuaternion(ode_q(bp.q))
+        body.setLinearVel(tuple(float(v) for v in lin + np.cross(ang, bp.p - frame.p)))
+        self.wake()
 
 
 class SimJoint:
