@@ -335,3 +335,33 @@ def test_course_robots_saved_and_loaded_back(relpath, zero_g_world, tmp_path):
         == sorted((p.filename, p.name) for l in desc.links for s in l.sensors for p in s.plugins)
     assert [c.geometry.filename for l in d2.links for c in l.collisions] == \
         [c.geometry.filename for l in desc.links for c in l.collisions]
+
+
+def test_inline_sdf14_model_and_relative_mesh_saved_elsewhere(tmp_path):
+    """An SDF 1.4 world's inline model (joint axis in the model frame by 1.4's default, a mesh
+    by a path relative to the world file) means the same in the saved 1.6 file in another
+    folder."""
+    import shutil
+    a, b = tmp_path / 'a', tmp_path / 'b'
+    (a / 'meshes').mkdir(parents=True)
+    b.mkdir()
+    shutil.copy(os.path.join(HERE, 'fixtures', 'loaders', 'meshes', 'cube_ascii.stl'),
+                str(a / 'meshes' / 'cube.stl'))
+    (a / 'w.world').write_text("""<sdf version="1.4"><world name="old"><gravity>0 0 0</gravity>
+      <model name="door"><pose>1 0 0 0 0 0</pose>
+        <link name="frame"><inertial><mass>5</mass></inertial>
+          <collision name="c"><geometry><mesh><uri>meshes/cube.stl</uri></mesh></geometry></collision></link>
+        <link name="leaf"><pose>0 0 1 0 0 1.5707963267948966</pose><inertial><mass>1</mass></inertial>
+          <collision name="c"><geometry><box><size>0.1 0.8 2</size></box></geometry></collision></link>
+        <joint name="hinge" type="revolute"><parent>frame</parent><child>leaf</child>
+          <axis><xyz>1 0 0</xyz></axis></joint>
+      </model></world></sdf>""")
+    world = sdf.load_world(str(a / 'w.world'))
+    pw = build(world)
+    text = saved_text(world, pw)
+    (b / 'saved.world').write_text(text)
+    w2 = sdf.load_world(str(b / 'saved.world'))
+    d1, d2 = world.models[0], w2.models[0]
+    assert np.allclose(d1.joints[0].axis, [1, 0, 0]) and np.allclose(d2.joints[0].axis, [1, 0, 0])
+    assert d2.links[0].collisions[0].geometry.filename == str(a / 'meshes' / 'cube.stl')
+    assert 'file://' + str(a / 'meshes' / 'cube.stl') in text

@@ -4,6 +4,7 @@
 Errors are one line `FILE:LINE: what` (ModelError). Frames as in model.py: link poses are in
 the model frame, joint anchors/axes in the model frame.
 """
+import copy
 import os
 import xml.etree.ElementTree as ET
 
@@ -64,8 +65,30 @@ def parse_model(ctx, el, prefix='', parent_pose=None, nested_in=None):
             raise ctx.err(el, 'model %r has no links' % name)
         model.canonical_link = model.links[0].name
         model.warnings = ctx.warnings
-        model.sdf_element = el
+        model.sdf_element = _saved_form(ctx, el)
     return model
+
+
+def _saved_form(ctx, el):
+    """The <model> as Save World writes it into an SDF 1.6 file anywhere: a copy where joint
+    axes of SDF 1.4 without <use_parent_model_frame> say they were in the model frame, and URIs
+    that are paths relative to this file become absolute file:// URIs."""
+    el = copy.deepcopy(el)
+    if ctx.v14:
+        for joint in el.iter('joint'):
+            for tag in ('axis', 'axis2'):
+                ax = joint.find(tag)
+                if ax is not None and ax.find('use_parent_model_frame') is None:
+                    ET.SubElement(ax, 'use_parent_model_frame').text = 'true'
+    for u in el.iter('uri'):
+        uri = (u.text or '').strip()
+        if not uri or '://' in uri or os.path.isabs(uri) or uri.startswith('__'):
+            continue
+        try:
+            u.text = 'file://' + ctx.paths.resolve_uri(uri, ctx.base_dir)
+        except ModelError:
+            pass                        # the loader has said what is wrong with it
+    return el
 
 
 def _include_element(ctx, inc):
