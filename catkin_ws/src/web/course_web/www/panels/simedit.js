@@ -208,7 +208,7 @@ export function attachSimEditor(ctx) {
     }
     selPose = pose;
     showPose(pose);
-    say(`${name} at x ${pose.position.x.toFixed(3)} y ${pose.position.y.toFixed(3)} z ${pose.position.z.toFixed(3)}`);
+    say(`set ${name} to x ${pose.position.x.toFixed(3)} y ${pose.position.y.toFixed(3)} z ${pose.position.z.toFixed(3)}`);
     ctx.dirty();
   };
   applyBtn.onclick = () => {
@@ -314,6 +314,7 @@ export function attachSimEditor(ctx) {
     }
     return null;
   };
+  let lastPick = null;  // the model under the last press (stats)
   let down = null;    // {x, y, drag: {name, start (world point), pose0, kind}}
   let dragD = null;   // the world-frame Matrix4 of the move being dragged
   const onDown = ev => {
@@ -321,6 +322,7 @@ export function attachSimEditor(ctx) {
     down = { x: ev.clientX, y: ev.clientY, drag: null };
     if (placing || mode === 'select' || !selected || !selPose) return;
     const hit = pick(ev);
+    lastPick = hit ? hit[0] : null;
     if (!hit || hit[0] !== selected) return;
     down.drag = { name: selected, start: hit[1], pose0: selPose, kind: mode };
     controls.enabled = false;   // the view does not orbit while a model is dragged
@@ -397,7 +399,14 @@ export function attachSimEditor(ctx) {
   const highlight = new THREE.Box3Helper(new THREE.Box3(), 0xffd000);
   highlight.visible = false;
   scene.add(highlight);
-  let selectedAt = null;
+  let selCentre = null;       // the selection box's centre in the view
+  // where the selection is on the page now (client pixels of its box's centre), or null
+  const selectedAt = () => {
+    if (!selCentre) return null;
+    camera.updateMatrixWorld();
+    const c = selCentre.clone().project(camera), r = canvas.getBoundingClientRect();
+    return [r.left + (c.x + 1) / 2 * r.width, r.top + (1 - c.y) / 2 * r.height];
+  };
   return {
     // after the view placed the markers by TF: moves not yet in the markers, deleted models
     // hidden, the selection box
@@ -421,14 +430,11 @@ export function attachSimEditor(ctx) {
         }
         if (name === selected && e.obj.visible) { e.obj.updateMatrixWorld(true); box.expandByObject(e.obj); }
       }
-      selectedAt = null;
+      selCentre = null;
       if (!box.isEmpty()) {
         highlight.box.copy(box);
         highlight.visible = true;
-        // where the selection is on the page (client pixels of the box's centre)
-        camera.updateMatrixWorld();
-        const c = box.getCenter(new THREE.Vector3()).project(camera), r = canvas.getBoundingClientRect();
-        selectedAt = [r.left + (c.x + 1) / 2 * r.width, r.top + (1 - c.y) / 2 * r.height];
+        selCentre = box.getCenter(new THREE.Vector3());
       }
     },
     // a scene markers message arrived: a move it shows (the model's first marker elsewhere
@@ -445,7 +451,7 @@ export function attachSimEditor(ctx) {
       simTime: stats ? secs(stats.sim_time) : null, iterations: stats ? stats.iterations : null,
       paused: stats ? stats.paused : null, rtf: stats ? stats.real_time_factor : null,
       stepSize: stats ? stats.max_step_size : null, lastStep, models: names.slice(), selected,
-      selPose, selectedAt, previews: [...previews.keys()], placing: placing ? placing.base : null, mode,
+      selPose, selectedAt: selectedAt(), lastPick, previews: [...previews.keys()], placing: placing ? placing.base : null, mode,
       drawn: (() => { const m = ctx.markers(); return m ? [...new Set(m.entries(null).filter(e => e.ns && e.ns.startsWith(MODEL_NS))
         .map(e => e.ns.slice(MODEL_NS.length)))] : []; })(), library: library ? library.length : null, saved, info: info.textContent,
     }),

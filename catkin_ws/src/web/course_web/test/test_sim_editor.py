@@ -1,0 +1,292 @@
+"""The 3D panel's scene editor in headless Chromium against a real simulator
+(test/sim_editor.launch: web.launch and gazebo_ros' empty_world.launch, sim_node), driven as a
+student does PW4 / lab 4 in the browser: the Insert list is the simulator's model library,
+insert a library model and a box by clicking on the ground, move the box by dragging it with
+the mouse and the table with the pose fields, pause and step 100 steps (sim time advances by
+exactly 100 x max_step_size), save the world (a download) and check the file: the models at
+their moved poses, and sim_node loads it back to the same poses. Clients without the token /
+rosauth MAC get nothing."""
+import os
+import sys
+import time
+import urllib.error
+import urllib.request
+import xml.etree.ElementTree as ET
+
+import numpy as np
+import pytest
+
+from course_testing import Proc, RosCore, free_port, wait_for
+from course_testing import sim_testing as T
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from test_browser import Stack, _chrome, _port_open  # noqa: E402  (the same browser set-up)
+
+TOKEN = 'beefcafe' * 4
+VIEW = ({'x': 0, 'y': 0, 'w': 1600, 'h': 900}, {'fixed': 'odom', 'distance': 9, 'follow': False, 'robot': False})
+LIBRARY_MODEL = 'table'
+
+
+class Editor(Stack):
+    def sim(self):
+        return self.stats('view3d')['sim']
+
+    def click(self, css):
+        self.driver.find_element('css selector', css).click()
+
+    def canvas_offset(self, x, y):
+        """Offsets from the canvas' centre (Selenium's origin) of the client point x, y."""
+        r = self.js("const r = document.querySelector('.view3d-canvas').getBoundingClientRect();"
+                    "return [r.left + r.width / 2, r.top + r.height / 2];")
+        return int(round(x - r[0])), int(round(y - r[1]))
+
+    def click_canvas(self, dx, dy):
+        from selenium.webdriver.common.action_chains import ActionChains
+        canvas = self.driver.find_element('css selector', '.view3d-canvas')
+        ActionChains(self.driver).move_to_element_with_offset(canvas, dx, dy).click().perform()
+
+    def model_state(self, name):
+        """/gazebo/get_model_state through the page's rosbridge connection."""
+        r = self.driver.execute_async_script(
+            "const done = arguments[arguments.length - 1];"
+            "new ROSLIB.Service({ros: courseWeb.ros(), name: '/gazebo/get_model_state',"
+            " serviceType: 'gazebo_msgs/GetModelState'}).callService({model_name: arguments[0],"
+            " relative_entity_name: ''}, r => done(r), e => done(String(e)));", name)
+        assert isinstance(r, dict) and r['success'], 'get_model_state(%s): %s' % (name, r)
+        return r['pose']
+
+
+@pytest.fixture(scope='module')
+def ed(tmp_path_factory):
+    tmp = str(tmp_path_factory.mktemp('sim_editor'))
+    downloads = os.path.join(tmp, 'downloads')
+    os.makedirs(downloads)
+    core = RosCore(log_dir=os.path.join(tmp, 'ros_log')).start()
+    driver = launch = None
+    try:
+        env = T.ros_env(core)
+        web, bridge = free_port(), free_port()
+        launch = Proc(['roslaunch', os.path.join(HERE, 'sim_editor.launch'), 'port:=%d' % web,
+                       'rosbridge_port:=%d' % bridge, 'token:=' + TOKEN,
+                       'secret_file:=' + os.path.join(tmp, 'secret')],
+                      env=env, log=os.path.join(tmp, 'launch.log'))
+
+        def up():
+            assert launch.alive(), 'sim_editor.launch exited:\n' + launch.output()[-3000:]
+            return _port_open(web) and _port_open(bridge)
+        wait_for(up, 120, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
+        driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
+        driver.set_script_timeout(30)
+        driver.execute_cdp_cmd('Page.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
+        driver.get('http://127.0.0.1:%d/?layout=empty&token=%s' % (web, TOKEN))
+        s = Editor(env, driver, launch, tmp)
+        s.web, s.bridge, s.downloads, s.core = web, bridge, downloads, core
+        s.wait(lambda: s.js('return window.courseWeb && courseWeb.connected()'), 'the page to connect to rosbridge')
+        s.js('courseWeb.addPanel("view3d", arguments[0], arguments[1])', *VIEW)
+        yield s
+    finally:
+        if driver:
+            driver.quit()
+        if launch:
+            launch.stop()
+        core.stop()
+
+
+def test_insert_list_is_the_model_library(ed):
+    from ode_sim.description import library
+    ed.wait(lambda: ed.sim()['simTime'], 'the simulator\'s figures (/gazebo/world_stats) in the panel')
+    assert 'Real time factor' in ed.driver.find_element('css selector', '.sim-stats').text
+    ed.click('.sim-insert-toggle')
+    ed.wait(lambda: ed.sim()['library'], 'the Insert list (sim/models.json)')
+    shown = ed.js("return [...document.querySelectorAll('.sim-item')].map(b => b.dataset.uri)")
+    assert shown == [e.uri for e in library.list_models()]
+    assert 'model://%s' % LIBRARY_MODEL in shown
+    # its thumbnail: a PNG rendered by the simulator's renderer
+    ok = ed.wait(lambda: ed.js(
+        "const i = [...document.querySelectorAll('.sim-item')].find(b => b.dataset.name === arguments[0])"
+        ".querySelector('img'); i.loading = 'eager'; return i.complete && i.naturalWidth > 0 && i.naturalWidth;",
+        LIBRARY_MODEL), 'the thumbnail of %s' % LIBRARY_MODEL, timeout=120)
+    assert ok >= 64
+
+
+def test_insert_a_library_model_and_a_box(ed):
+    s = ed
+    s.js("[...document.querySelectorAll('.sim-item')].find(b => b.dataset.name === arguments[0]).click()", LIBRARY_MODEL)
+    assert s.sim()['placing'] == LIBRARY_MODEL
+    s.click_canvas(-200, 60)
+    s.wait(lambda: LIBRARY_MODEL in s.sim()['models'], '%s inserted' % LIBRARY_MODEL)
+    s.click('.sim-shape-box')
+    s.click_canvas(160, 40)
+    s.wait(lambda: 'unit_box' in s.sim()['models'], 'unit_box inserted')
+    s.click('.sim-insert-toggle')      # the list closes
+    s.wait(lambda: {LIBRARY_MODEL, 'unit_box'} <= set(s.sim()['drawn']),
+           'both models drawn in the view (scene markers)')
+    table, box = s.model_state(LIBRARY_MODEL), s.model_state('unit_box')
+    # placed where the clicks met the ground: left and right of the view's centre
+    assert abs(box['position']['z'] - 0.5) < 0.05, box
+    assert np.hypot(table['position']['x'] - box['position']['x'],
+                    table['position']['y'] - box['position']['y']) > 1.0, (table, box)
+    s.shot('.view3d-canvas', 'inserted')
+
+
+def test_move_the_box_with_the_mouse(ed):
+    from selenium.webdriver.common.action_chains import ActionChains
+    s = ed
+    s.js("const sel = document.querySelector('.sim-model'); sel.value = 'unit_box';"
+         " sel.dispatchEvent(new Event('change'))")
+    s.wait(lambda: s.sim()['selectedAt'] and s.sim()['selPose'], 'unit_box selected and highlighted')
+    before = s.model_state('unit_box')
+    s.click('.sim-mode-translate')
+    x, y = s.sim()['selectedAt']
+    dx, dy = s.canvas_offset(x, y)
+    canvas = s.driver.find_element('css selector', '.view3d-canvas')
+    chain = ActionChains(s.driver).move_to_element_with_offset(canvas, dx, dy).click_and_hold()
+    for _ in range(6):
+        chain = chain.move_by_offset(-20, 0).pause(0.05)
+    chain.release().perform()
+    s.wait(lambda: s.sim()['info'].startswith('set unit_box to x'), 'the move set by set_model_state')
+    after = s.model_state('unit_box')
+    moved = np.hypot(after['position']['x'] - before['position']['x'],
+                     after['position']['y'] - before['position']['y'])
+    assert moved > 0.3, 'the box moved %.3f m after a 120 px drag' % moved
+    assert abs(after['position']['z'] - before['position']['z']) < 0.05
+    s.click('.sim-mode-select')
+
+
+def test_set_the_table_pose_in_the_fields(ed):
+    s = ed
+    s.js("const sel = document.querySelector('.sim-model'); sel.value = arguments[0];"
+         " sel.dispatchEvent(new Event('change'))", LIBRARY_MODEL)
+    s.wait(lambda: s.sim()['selected'] == LIBRARY_MODEL and s.sim()['selPose'], 'the table selected')
+    for k, v in (('x', '-1.5'), ('y', '2.25'), ('yaw', '0.7')):
+        f = s.driver.find_element('css selector', '.sim-pose-' + k)
+        f.clear()
+        f.send_keys(v)
+    s.click('.sim-apply')
+    s.wait(lambda: abs(s.model_state(LIBRARY_MODEL)['position']['x'] + 1.5) < 1e-6, 'the table at x -1.5')
+    p = s.model_state(LIBRARY_MODEL)
+    assert abs(p['position']['y'] - 2.25) < 1e-6
+    yaw = 2 * np.arctan2(p['orientation']['z'], p['orientation']['w'])
+    assert abs(yaw - 0.7) < 1e-6, p
+
+
+def test_pause_and_step_100(ed):
+    s = ed
+    s.click('.sim-pause')
+    s.wait(lambda: s.sim()['paused'] is True, 'the simulation paused (world_stats)')
+    # the figures while paused stand still
+    s.wait(lambda: (lambda a: time.sleep(0.5) or (a if a == s.sim()['simTime'] else None))(s.sim()['simTime']),
+           'sim time to stand still while paused')
+    step = s.sim()['stepSize']
+    f = s.driver.find_element('css selector', '.sim-steps')
+
+    def steps(n):
+        before = s.sim()['lastStep']
+        f.clear()
+        f.send_keys(str(n))
+        s.click('.sim-step')
+        return s.wait(lambda: s.sim()['lastStep'] != before and s.sim()['lastStep'], 'the answer of step_world')
+    one = steps(1)
+    assert one['steps'] == 1
+    last = steps(100)
+    assert last['steps'] == 100
+    assert abs(last['sim_time'] - (one['sim_time'] + 100 * step)) < 1e-9, (one, step, last)
+    assert last['iterations'] == one['iterations'] + 100, (one, last)
+    # the bottom bar shows it (a ROS time: whole nanoseconds)
+    s.wait(lambda: abs(s.sim()['simTime'] - last['sim_time']) < 2e-9 and s.sim()['iterations'] == last['iterations'],
+           'world_stats at the stepped time')
+    assert s.sim()['paused'] is True
+
+
+def test_save_world_and_load_it_back(ed, tmp_path):
+    s = ed
+    poses = {n: s.model_state(n) for n in (LIBRARY_MODEL, 'unit_box')}
+    f = s.driver.find_element('css selector', '.sim-file')
+    f.clear()
+    f.send_keys('browser_scene.world')
+    s.click('.sim-save')
+    path = os.path.join(s.downloads, 'browser_scene.world')
+    s.wait(lambda: os.path.isfile(path) and not os.path.exists(path + '.crdownload') and
+           os.path.getsize(path) == s.sim()['saved']['bytes'], 'the downloaded world file')
+    world = ET.parse(path).getroot().find('world')
+    assert world is not None, open(path).read()[:500]
+    found = {}
+    for inc in world.findall('include'):
+        found[inc.findtext('name')] = ('include', inc.findtext('uri'), inc.findtext('pose'))
+    for mod in world.findall('model'):
+        found[mod.get('name')] = ('model', None, mod.findtext('pose'))
+    assert found[LIBRARY_MODEL][:2] == ('include', 'model://' + LIBRARY_MODEL), found
+    assert found['unit_box'][0] == 'model', found
+    for name, p in poses.items():
+        vals = [float(v) for v in found[name][2].split()]
+        assert np.allclose(vals[:3], [p['position'][k] for k in 'xyz'], atol=1e-4), (name, vals, p)
+        yaw = 2 * np.arctan2(p['orientation']['z'], p['orientation']['w'])
+        assert abs(np.arctan2(np.sin(vals[5] - yaw), np.cos(vals[5] - yaw))) < 1e-4, (name, vals, p)
+    # sim_node loads the saved file back (paused): the same models at the same poses
+    core = RosCore(log_dir=str(tmp_path / 'ros_log')).start()
+    sim = None
+    try:
+        env = T.ros_env(core)
+        sim = Proc(['rosrun', 'ode_sim', 'sim_node', path, '-u', '__name:=gazebo'], env=env,
+                   log=str(tmp_path / 'sim.log'))
+        for name, p in poses.items():
+            got = T.probe(['model', name], env, proc=sim)['pose']    # x y z yaw
+            yaw = 2 * np.arctan2(p['orientation']['z'], p['orientation']['w'])
+            assert np.allclose([got[k] for k in 'xyz'], [p['position'][k] for k in 'xyz'],
+                               atol=1e-4), (name, got, p)
+            assert abs(np.arctan2(np.sin(got['yaw'] - yaw), np.cos(got['yaw'] - yaw))) < 1e-4, \
+                (name, got, p)
+    finally:
+        if sim:
+            sim.stop()
+        core.stop()
+
+
+def test_delete_and_bad_input_give_one_line(ed):
+    s = ed
+    # step while running: the simulator's one line in the panel
+    s.click('.sim-pause')
+    s.wait(lambda: s.sim()['paused'] is False, 'the simulation running again')
+    s.click('.sim-step')
+    s.wait(lambda: s.sim()['info'].startswith('step_world: '), 'step_world\'s refusal in the panel')
+    assert '\n' not in s.sim()['info']
+    s.js("const sel = document.querySelector('.sim-model'); sel.value = 'unit_box';"
+         " sel.dispatchEvent(new Event('change'))")
+    s.wait(lambda: s.sim()['selected'] == 'unit_box', 'unit_box selected')
+    s.click('.sim-delete')
+    s.wait(lambda: 'unit_box' not in s.sim()['models'] and 'unit_box' not in s.sim()['drawn'],
+           'unit_box deleted (list and view)')
+
+
+def test_clients_without_token_or_mac_get_nothing(ed):
+    s = ed
+    for path in ('/sim/models.json', '/sim/thumbnail?source=library&name=table'):
+        with pytest.raises(urllib.error.HTTPError) as e:
+            urllib.request.urlopen('http://127.0.0.1:%d%s' % (s.web, path), timeout=10)
+        assert e.value.code == 403
+    req = urllib.request.Request('http://127.0.0.1:%d/sim/thumbnail?name=no_such_model' % s.web,
+                                 headers={'Authorization': 'token ' + TOKEN})
+    with pytest.raises(urllib.error.HTTPError) as e:
+        urllib.request.urlopen(req, timeout=10)
+    body = e.value.read().decode()
+    assert e.value.code == 404 and body.count('\n') == 1 and 'no_such_model' in body, body
+    # a WebSocket client without rosauth's MAC is closed before any simulator service runs
+    import subprocess
+    sys.path.insert(0, os.path.join(subprocess.check_output(
+        ['rospack', 'find', 'rosbridge_server'], env=s.env, text=True).strip(), 'test'))
+    from wsclient import WsClient
+    c = WsClient(s.bridge)
+    closed = None
+    try:
+        c.send(op='call_service', service='/gazebo/delete_model', id='x',
+               args={'model_name': LIBRARY_MODEL})
+        while True:
+            m = c.recv()
+            assert not (isinstance(m, dict) and m.get('op') == 'service_response'), m
+    except (ConnectionError, OSError) as e:
+        closed = str(e)
+    finally:
+        c.close()
+    assert closed, 'rosbridge answered a client without authentication'
+    assert LIBRARY_MODEL in s.sim()['models'] and s.model_state(LIBRARY_MODEL)
