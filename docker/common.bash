@@ -1,4 +1,6 @@
 # Shared settings of the course's docker scripts (sourced, not run).
+# shellcheck shell=bash
+# shellcheck disable=SC2034  # the variables are read by the scripts that source this file
 # The image's Debian release: bookworm (Debian 12, the default) or trixie (Debian 13).
 # Choose it with DEBIAN_RELEASE=trixie or as the scripts' first argument
 # (./docker_build.bash trixie, ./docker_run.bash trixie, ./docker_new.bash trixie).

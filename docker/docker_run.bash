@@ -13,7 +13,7 @@ case "${1:-}" in bookworm|trixie) export DEBIAN_RELEASE="$1"; shift ;; esac
 source "$(dirname "${BASH_SOURCE[0]}")/common.bash"
 mkdir -p "$WORKSPACE_DIR"
 gpu=(); [ -e /dev/dri ] && gpu=(--device /dev/dri:/dev/dri)   # Mesa GPU access when present
-command -v xhost >/dev/null 2>&1 && xhost +local:root >/dev/null 2>&1 || true
+if command -v xhost >/dev/null 2>&1; then xhost +local:root >/dev/null 2>&1 || true; fi
 cmd=(bash); [ $# -gt 0 ] && cmd=(bash -c 'source /course/scripts/env.sh && exec "$@"' bash "$@")
 exec docker run "${DOCKER_TTY[@]}" --rm \
     --name "$COURSE_CONTAINER" \

@@ -1,9 +1,11 @@
 # Source this file (bash): `source scripts/env.sh`
+# shellcheck shell=bash
 # Puts Debian's /usr/bin first on PATH (ROS needs /usr/bin/python3, not a pyenv/venv python),
 # adds the workspace-local PyPI packages and sources the catkin workspace.
 _COURSE_REPO="$(cd "$(dirname "${BASH_SOURCE[0]:-$0}")/.." && pwd)"
 export COURSE_REPO="$_COURSE_REPO"
-export PATH="/usr/bin:/bin:$(printf '%s' "$PATH" | tr ':' '\n' | grep -vxE '/usr/bin|/bin' | paste -sd: -)"
+PATH="/usr/bin:/bin:$(printf '%s' "$PATH" | tr ':' '\n' | grep -vxE '/usr/bin|/bin' | paste -sd: -)"
+export PATH
 case ":${PYTHONPATH:-}:" in
     *":$_COURSE_REPO/.deps/python:"*) ;;
     *) export PYTHONPATH="$_COURSE_REPO/.deps/python${PYTHONPATH:+:$PYTHONPATH}" ;;

@@ -15,6 +15,7 @@
 # COURSE_DOCKER_REBUILD=0 uses an existing ros-course:RELEASE instead of building (step 3);
 # COURSE_CA_BUNDLE (default: /etc/ssl/certs/ca-certificates.crt when present).
 # Figures and logs: build/test-docker/RELEASE/ (screenshot.png, build.log, suite.log).
+# shellcheck disable=SC2317  # cleanup and the check functions are called through trap and check
 set -uo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 export PATH="/usr/bin:/bin:/usr/sbin:/sbin:$PATH"   # Debian's docker client (20.10 talks BuildKit)
