@@ -2,12 +2,13 @@
 
 #include <cmath>
 
-#include <angles/angles.h>
-#include <hardware_interface/hardware_interface_exception.h>
+#include <forward_command_controller/joint_setup.h>
+#include <forward_command_controller/urdf_joint.h>
 #include <pluginlib/class_list_macros.hpp>
 
 namespace effort_controllers
 {
+namespace internal = forward_command_controller::internal;
 
 JointGroupPositionController::JointGroupPositionController() = default;
 
@@ -15,18 +16,9 @@ JointGroupPositionController::~JointGroupPositionController() { sub_command_.shu
 
 bool JointGroupPositionController::init(hardware_interface::EffortJointInterface* robot, ros::NodeHandle& n)
 {
-  const std::string param_name = "joints";
-  if (!n.getParam(param_name, joint_names_))
-  {
-    ROS_ERROR_STREAM("Failed to getParam '" << param_name << "' (namespace: " << n.getNamespace() << ").");
+  if (!internal::getJointNames(n, joint_names_))
     return false;
-  }
   n_joints_ = joint_names_.size();
-  if (n_joints_ == 0)
-  {
-    ROS_ERROR_STREAM("List of joint names is empty.");
-    return false;
-  }
 
   urdf::Model urdf;
   if (!urdf.initParamWithNodeHandle("robot_description", n))
@@ -40,32 +32,16 @@ bool JointGroupPositionController::init(hardware_interface::EffortJointInterface
   pid_controllers_.resize(n_joints_);
   for (unsigned int i = 0; i < n_joints_; ++i)
   {
-    try
-    {
-      joints_.push_back(robot->getHandle(joint_names_[i]));
-    }
-    catch (const hardware_interface::HardwareInterfaceException& e)
-    {
-      ROS_ERROR_STREAM("Exception thrown: " << e.what());
+    if (!internal::appendJointHandle(robot, joint_names_[i], joints_))
       return false;
-    }
 
     ros::NodeHandle pid_nh(n, std::string("gains/") + joint_names_[i]);
     if (!pid_controllers_[i].init(pid_nh))
       return false;
 
-    urdf::JointConstSharedPtr joint_urdf = urdf.getJoint(joint_names_[i]);
+    urdf::JointConstSharedPtr joint_urdf = internal::getUrdfJoint(urdf, joint_names_[i], "");
     if (!joint_urdf)
-    {
-      ROS_ERROR("Could not find joint '%s' in urdf", joint_names_[i].c_str());
       return false;
-    }
-    if ((joint_urdf->type == urdf::Joint::REVOLUTE || joint_urdf->type == urdf::Joint::PRISMATIC) &&
-        !joint_urdf->limits)
-    {
-      ROS_ERROR("Joint '%s' has no <limit> in the urdf", joint_names_[i].c_str());
-      return false;
-    }
     joint_urdfs_.push_back(joint_urdf);
   }
 
@@ -94,49 +70,25 @@ void JointGroupPositionController::update(const ros::Time& /*time*/, const ros::
     double command_position = commands[i];
     enforceJointLimits(command_position, i);
     const double current_position = joints_[i].getPosition();
-    const urdf::JointConstSharedPtr& joint_urdf = joint_urdfs_[i];
-
-    double error = 0.0;
-    if (joint_urdf->type == urdf::Joint::REVOLUTE)
-      angles::shortest_angular_distance_with_large_limits(current_position, command_position, joint_urdf->limits->lower, joint_urdf->limits->upper, error);
-    else if (joint_urdf->type == urdf::Joint::CONTINUOUS)
-      error = angles::shortest_angular_distance(current_position, command_position);
-    else
-      error = command_position - current_position;
-
+    const double error = internal::positionError(joint_urdfs_[i], current_position, command_position);
     joints_[i].setCommand(pid_controllers_[i].computeCommand(error, period));
   }
 }
 
 void JointGroupPositionController::commandCB(const std_msgs::Float64MultiArrayConstPtr& msg)
 {
-  if (msg->data.size() != n_joints_)
+  std::string error;
+  if (!internal::checkGroupCommand(msg->data, n_joints_, error))
   {
-    ROS_ERROR_STREAM_THROTTLE(1.0, "Dimension of command (" << msg->data.size() << ") does not match number of joints ("
-                                              << n_joints_ << ")! Not executing!");
+    ROS_ERROR_STREAM_THROTTLE(1.0, error);
     return;
-  }
-  for (double value : msg->data)
-  {
-    if (!std::isfinite(value))
-    {
-      ROS_ERROR_STREAM_THROTTLE(1.0, "Command holds a non-finite value (" << value << ")! Not executing!");
-      return;
-    }
   }
   commands_buffer_.writeFromNonRT(msg->data);
 }
 
 void JointGroupPositionController::enforceJointLimits(double& command, unsigned int index)
 {
-  const urdf::JointConstSharedPtr& joint_urdf = joint_urdfs_[index];
-  if (joint_urdf->limits && (joint_urdf->type == urdf::Joint::REVOLUTE || joint_urdf->type == urdf::Joint::PRISMATIC))
-  {
-    if (command > joint_urdf->limits->upper)
-      command = joint_urdf->limits->upper;
-    else if (command < joint_urdf->limits->lower)
-      command = joint_urdf->limits->lower;
-  }
+  internal::enforceJointLimits(joint_urdfs_[index], command);
 }
 
 }  // namespace effort_controllers

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include <hardware_interface/hardware_interface_exception.h>
+#include <forward_command_controller/joint_setup.h>
 #include <pluginlib/class_list_macros.hpp>
 
 namespace effort_controllers
@@ -24,11 +24,8 @@ bool JointVelocityController::init(hardware_interface::EffortJointInterface* rob
 {
   namespace_ = n.getNamespace();
   std::string joint_name;
-  if (!n.getParam("joint", joint_name))
-  {
-    ROS_ERROR("No joint given (namespace: %s)", n.getNamespace().c_str());
+  if (!forward_command_controller::internal::getJointName(n, joint_name))
     return false;
-  }
   if (!pid_controller_.init(ros::NodeHandle(n, "pid")))
     return false;
 
@@ -36,16 +33,7 @@ bool JointVelocityController::init(hardware_interface::EffortJointInterface* rob
       std::make_unique<realtime_tools::RealtimePublisher<control_msgs::JointControllerState>>(n, "state", 1);
   sub_command_ = n.subscribe<std_msgs::Float64>("command", 1, &JointVelocityController::setCommandCB, this);
 
-  try
-  {
-    joint_ = robot->getHandle(joint_name);
-  }
-  catch (const hardware_interface::HardwareInterfaceException& e)
-  {
-    ROS_ERROR("Could not get joint '%s' (namespace: %s): %s", joint_name.c_str(), n.getNamespace().c_str(), e.what());
-    return false;
-  }
-  return true;
+  return forward_command_controller::internal::getJointHandle(robot, joint_name, n, joint_);
 }
 
 void JointVelocityController::setGains(const double& p, const double& i, const double& d, const double& i_max,

@@ -6,7 +6,7 @@
 #include <string>
 
 #include <controller_interface/controller.h>
-#include <hardware_interface/hardware_interface_exception.h>
+#include <forward_command_controller/joint_setup.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <realtime_tools/realtime_buffer.h>
 #include <ros/node_handle.h>
@@ -30,21 +30,8 @@ public:
   bool init(T* hw, ros::NodeHandle& n) override
   {
     std::string joint_name;
-    if (!n.getParam("joint", joint_name))
-    {
-      ROS_ERROR("No joint given (namespace: %s)", n.getNamespace().c_str());
+    if (!internal::getJointName(n, joint_name) || !internal::getJointHandle(hw, joint_name, n, joint_))
       return false;
-    }
-    try
-    {
-      joint_ = hw->getHandle(joint_name);
-    }
-    catch (const hardware_interface::HardwareInterfaceException& e)
-    {
-      ROS_ERROR("Could not get joint '%s' (namespace: %s): %s", joint_name.c_str(), n.getNamespace().c_str(),
-                e.what());
-      return false;
-    }
     namespace_ = n.getNamespace();
     sub_command_ = n.subscribe<std_msgs::Float64>("command", 1, &ForwardCommandController::commandCB, this);
     return true;

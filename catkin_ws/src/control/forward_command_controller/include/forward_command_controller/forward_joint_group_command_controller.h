@@ -3,12 +3,11 @@
 // the commands of the joints listed in `joints`.
 #pragma once
 
-#include <cmath>
 #include <string>
 #include <vector>
 
 #include <controller_interface/controller.h>
-#include <hardware_interface/hardware_interface_exception.h>
+#include <forward_command_controller/joint_setup.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <realtime_tools/realtime_buffer.h>
 #include <ros/node_handle.h>
@@ -32,31 +31,11 @@ public:
 
   bool init(T* hw, ros::NodeHandle& n) override
   {
-    const std::string param_name = "joints";
-    if (!n.getParam(param_name, joint_names_))
-    {
-      ROS_ERROR_STREAM("Failed to getParam '" << param_name << "' (namespace: " << n.getNamespace() << ").");
+    if (!internal::getJointNames(n, joint_names_))
       return false;
-    }
     n_joints_ = joint_names_.size();
-    if (n_joints_ == 0)
-    {
-      ROS_ERROR_STREAM("List of joint names is empty.");
+    if (!internal::getJointHandles(hw, joint_names_, joints_))
       return false;
-    }
-    joints_.clear();
-    for (const std::string& name : joint_names_)
-    {
-      try
-      {
-        joints_.push_back(hw->getHandle(name));
-      }
-      catch (const hardware_interface::HardwareInterfaceException& e)
-      {
-        ROS_ERROR_STREAM("Exception thrown: " << e.what());
-        return false;
-      }
-    }
     commands_buffer_.writeFromNonRT(std::vector<double>(n_joints_, 0.0));
     sub_command_ = n.subscribe<std_msgs::Float64MultiArray>("command", 1,
                                                             &ForwardJointGroupCommandController::commandCB, this);
@@ -82,19 +61,11 @@ private:
 
   void commandCB(const std_msgs::Float64MultiArrayConstPtr& msg)
   {
-    if (msg->data.size() != n_joints_)
+    std::string error;
+    if (!internal::checkGroupCommand(msg->data, n_joints_, error))
     {
-      ROS_ERROR_STREAM_THROTTLE(1.0, "Dimension of command (" << msg->data.size() << ") does not match number of joints ("
-                                                << n_joints_ << ")! Not executing!");
+      ROS_ERROR_STREAM_THROTTLE(1.0, error);
       return;
-    }
-    for (double value : msg->data)
-    {
-      if (!std::isfinite(value))
-      {
-        ROS_ERROR_STREAM_THROTTLE(1.0, "Command holds a non-finite value (" << value << ")! Not executing!");
-        return;
-      }
     }
     commands_buffer_.writeFromNonRT(msg->data);
   }

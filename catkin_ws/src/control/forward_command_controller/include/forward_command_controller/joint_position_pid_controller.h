@@ -13,7 +13,8 @@
 #include <control_msgs/JointControllerState.h>
 #include <control_toolbox/pid.h>
 #include <controller_interface/controller.h>
-#include <hardware_interface/hardware_interface_exception.h>
+#include <forward_command_controller/joint_setup.h>
+#include <forward_command_controller/urdf_joint.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <realtime_tools/realtime_buffer.h>
 #include <realtime_tools/realtime_publisher.h>
@@ -101,11 +102,8 @@ bool JointPositionPidController<HardwareInterface>::init(HardwareInterface* robo
 {
   namespace_ = n.getNamespace();
   std::string joint_name;
-  if (!n.getParam("joint", joint_name))
-  {
-    ROS_ERROR("No joint given (namespace: %s)", n.getNamespace().c_str());
+  if (!internal::getJointName(n, joint_name))
     return false;
-  }
 
   if (!pid_controller_.init(ros::NodeHandle(n, "pid")))
     return false;
@@ -114,15 +112,8 @@ bool JointPositionPidController<HardwareInterface>::init(HardwareInterface* robo
       std::make_unique<realtime_tools::RealtimePublisher<control_msgs::JointControllerState>>(n, "state", 1);
   sub_command_ = n.subscribe<std_msgs::Float64>("command", 1, &JointPositionPidController::setCommandCB, this);
 
-  try
-  {
-    joint_ = robot->getHandle(joint_name);
-  }
-  catch (const hardware_interface::HardwareInterfaceException& e)
-  {
-    ROS_ERROR("Could not get joint '%s' (namespace: %s): %s", joint_name.c_str(), n.getNamespace().c_str(), e.what());
+  if (!internal::getJointHandle(robot, joint_name, n, joint_))
     return false;
-  }
 
   urdf::Model urdf;
   if (!urdf.initParamWithNodeHandle("robot_description", n))
@@ -130,19 +121,8 @@ bool JointPositionPidController<HardwareInterface>::init(HardwareInterface* robo
     ROS_ERROR("Failed to parse urdf file");
     return false;
   }
-  joint_urdf_ = urdf.getJoint(joint_name);
-  if (!joint_urdf_)
-  {
-    ROS_ERROR("Could not find joint '%s' in urdf", joint_name.c_str());
-    return false;
-  }
-  if ((joint_urdf_->type == urdf::Joint::REVOLUTE || joint_urdf_->type == urdf::Joint::PRISMATIC) &&
-      !joint_urdf_->limits)
-  {
-    ROS_ERROR("Joint '%s' has no <limit> in the urdf (namespace: %s)", joint_name.c_str(), n.getNamespace().c_str());
-    return false;
-  }
-  return true;
+  joint_urdf_ = internal::getUrdfJoint(urdf, joint_name, " (namespace: " + n.getNamespace() + ")");
+  return static_cast<bool>(joint_urdf_);
 }
 
 template <class HardwareInterface>
@@ -191,16 +171,7 @@ void JointPositionPidController<HardwareInterface>::update(const ros::Time& time
 
   enforceJointLimits(command_position);
 
-  double error = 0.0;
-  if (!joint_urdf_ || joint_urdf_->type == urdf::Joint::PRISMATIC)
-    error = command_position - current_position;
-  else if (joint_urdf_->type == urdf::Joint::REVOLUTE)
-    angles::shortest_angular_distance_with_large_limits(current_position, command_position, joint_urdf_->limits->lower,
-                                                        joint_urdf_->limits->upper, error);
-  else if (joint_urdf_->type == urdf::Joint::CONTINUOUS)
-    error = angles::shortest_angular_distance(current_position, command_position);
-  else
-    error = command_position - current_position;
+  const double error = internal::positionError(joint_urdf_, current_position, command_position);
 
   // effort or velocity, depending on HardwareInterface
   double commanded = 0.0;
@@ -248,14 +219,7 @@ void JointPositionPidController<HardwareInterface>::setCommandCB(const std_msgs:
 template <class HardwareInterface>
 void JointPositionPidController<HardwareInterface>::enforceJointLimits(double& command)
 {
-  if (joint_urdf_ && joint_urdf_->limits &&
-      (joint_urdf_->type == urdf::Joint::REVOLUTE || joint_urdf_->type == urdf::Joint::PRISMATIC))
-  {
-    if (command > joint_urdf_->limits->upper)
-      command = joint_urdf_->limits->upper;
-    else if (command < joint_urdf_->limits->lower)
-      command = joint_urdf_->limits->lower;
-  }
+  internal::enforceJointLimits(joint_urdf_, command);
 }
 
 }  // namespace forward_command_controller
