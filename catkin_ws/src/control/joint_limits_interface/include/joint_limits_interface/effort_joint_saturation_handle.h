@@ -6,7 +6,7 @@
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
 #include <joint_limits_interface/joint_limits_interface_exception.h>
 
@@ -27,12 +27,8 @@ public:
   EffortJointSaturationHandle(const hardware_interface::JointHandle& jh, const JointLimits& limits)
     : jh_(jh), limits_(limits)
   {
-    if (!limits.has_velocity_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no velocity limits specification.");
-    if (!limits.has_effort_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no efforts limits specification.");
+    internal::requireLimits(limits.has_velocity_limits, getName(), "velocity");
+    internal::requireLimits(limits.has_effort_limits, getName(), "efforts");  // the original's wording
   }
 
   std::string getName() const { return jh_.getName(); }

@@ -6,9 +6,8 @@
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
-#include <joint_limits_interface/joint_limits_interface_exception.h>
 
 namespace joint_limits_interface
 {
@@ -30,12 +29,8 @@ public:
                               const SoftJointLimits& soft_limits)
     : jh_(jh), limits_(limits), soft_limits_(soft_limits)
   {
-    if (!limits.has_velocity_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no velocity limits specification.");
-    if (!limits.has_effort_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no effort limits specification.");
+    internal::requireLimits(limits.has_velocity_limits, getName(), "velocity");
+    internal::requireLimits(limits.has_effort_limits, getName(), "effort");
   }
 
   std::string getName() const { return jh_.getName(); }
@@ -46,20 +41,12 @@ public:
     const double pos = jh_.getPosition();
     const double vel = jh_.getVelocity();
 
-    double soft_min_vel = -limits_.max_velocity;
-    double soft_max_vel = limits_.max_velocity;
-    if (limits_.has_position_limits)
-    {
-      soft_min_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.min_position), -limits_.max_velocity,
-                              limits_.max_velocity);
-      soft_max_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.max_position), -limits_.max_velocity,
-                              limits_.max_velocity);
-    }
+    const auto vel_range = internal::softVelocityRange(limits_, soft_limits_, pos, limits_.max_velocity);
 
     const double soft_min_eff =
-        saturate(-soft_limits_.k_velocity * (vel - soft_min_vel), -limits_.max_effort, limits_.max_effort);
+        saturate(-soft_limits_.k_velocity * (vel - vel_range.first), -limits_.max_effort, limits_.max_effort);
     const double soft_max_eff =
-        saturate(-soft_limits_.k_velocity * (vel - soft_max_vel), -limits_.max_effort, limits_.max_effort);
+        saturate(-soft_limits_.k_velocity * (vel - vel_range.second), -limits_.max_effort, limits_.max_effort);
 
     jh_.setCommand(saturate(jh_.getCommand(), soft_min_eff, soft_max_eff));
   }

@@ -1,14 +1,14 @@
 // Re-implementation of ros_control's joint_limits_interface (Noetic 0.20 API) for Debian 12.
 #pragma once
 
-#include <cmath>
+#include <algorithm>
 #include <limits>
 #include <string>
 
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
 
 namespace joint_limits_interface
@@ -40,32 +40,27 @@ public:
   /// \param period control period (used with velocity limits)
   void enforceLimits(const ros::Duration& period)
   {
-    if (std::isnan(prev_cmd_))
-      prev_cmd_ = jh_.getPosition();
-
+    const double prev_cmd = prev_cmd_.get(jh_);
     double min_pos = min_pos_limit_;
     double max_pos = max_pos_limit_;
     if (limits_.has_velocity_limits)
     {
       const double delta_pos = limits_.max_velocity * period.toSec();
-      min_pos = std::max(prev_cmd_ - delta_pos, min_pos_limit_);
-      max_pos = std::min(prev_cmd_ + delta_pos, max_pos_limit_);
+      min_pos = std::max(prev_cmd - delta_pos, min_pos_limit_);
+      max_pos = std::min(prev_cmd + delta_pos, max_pos_limit_);
     }
-
-    const double cmd = internal::saturate(jh_.getCommand(), min_pos, max_pos);
-    jh_.setCommand(cmd);
-    prev_cmd_ = cmd;
+    prev_cmd_.apply(jh_, min_pos, max_pos);
   }
 
   /// Forget the previous command (after a mode switch or an e-stop).
-  void reset() { prev_cmd_ = std::numeric_limits<double>::quiet_NaN(); }
+  void reset() { prev_cmd_.reset(); }
 
 private:
   hardware_interface::JointHandle jh_;
   JointLimits limits_;
   double min_pos_limit_ = -std::numeric_limits<double>::max();
   double max_pos_limit_ = std::numeric_limits<double>::max();
-  double prev_cmd_ = std::numeric_limits<double>::quiet_NaN();
+  internal::PreviousPositionCommand prev_cmd_;
 };
 
 }  // namespace joint_limits_interface

@@ -1,16 +1,14 @@
 // Re-implementation of ros_control's joint_limits_interface (Noetic 0.20 API) for Debian 12.
 #pragma once
 
-#include <cmath>
-#include <limits>
+#include <algorithm>
 #include <string>
 
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
-#include <joint_limits_interface/joint_limits_interface_exception.h>
 
 namespace joint_limits_interface
 {
@@ -32,9 +30,7 @@ public:
                                 const SoftJointLimits& soft_limits)
     : jh_(jh), limits_(limits), soft_limits_(soft_limits)
   {
-    if (!limits.has_velocity_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no velocity limits specification.");
+    internal::requireLimits(limits.has_velocity_limits, getName(), "velocity");
   }
 
   std::string getName() const { return jh_.getName(); }
@@ -42,24 +38,12 @@ public:
   /// \param period control period, > 0
   void enforceLimits(const ros::Duration& period)
   {
-    using internal::saturate;
-    if (std::isnan(prev_cmd_))
-      prev_cmd_ = jh_.getPosition();
-    const double pos = prev_cmd_;
-
-    double soft_min_vel = -limits_.max_velocity;
-    double soft_max_vel = limits_.max_velocity;
-    if (limits_.has_position_limits)
-    {
-      soft_min_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.min_position), -limits_.max_velocity,
-                              limits_.max_velocity);
-      soft_max_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.max_position), -limits_.max_velocity,
-                              limits_.max_velocity);
-    }
+    const double pos = prev_cmd_.get(jh_);
+    const auto vel_range = internal::softVelocityRange(limits_, soft_limits_, pos, limits_.max_velocity);
 
     const double dt = period.toSec();
-    double pos_low = pos + soft_min_vel * dt;
-    double pos_high = pos + soft_max_vel * dt;
+    double pos_low = pos + vel_range.first * dt;
+    double pos_high = pos + vel_range.second * dt;
     if (limits_.has_position_limits)
     {
       // guards against soft limits configured beyond the hard ones
@@ -67,19 +51,17 @@ public:
       pos_high = std::min(pos_high, limits_.max_position);
     }
 
-    const double cmd = saturate(jh_.getCommand(), pos_low, pos_high);
-    jh_.setCommand(cmd);
-    prev_cmd_ = cmd;
+    prev_cmd_.apply(jh_, pos_low, pos_high);
   }
 
   /// Forget the previous command (after a mode switch or an e-stop).
-  void reset() { prev_cmd_ = std::numeric_limits<double>::quiet_NaN(); }
+  void reset() { prev_cmd_.reset(); }
 
 private:
   hardware_interface::JointHandle jh_;
   JointLimits limits_;
   SoftJointLimits soft_limits_;
-  double prev_cmd_ = std::numeric_limits<double>::quiet_NaN();
+  internal::PreviousPositionCommand prev_cmd_;
 };
 
 }  // namespace joint_limits_interface

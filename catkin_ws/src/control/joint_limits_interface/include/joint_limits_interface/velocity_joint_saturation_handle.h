@@ -7,7 +7,7 @@
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
 #include <joint_limits_interface/joint_limits_interface_exception.h>
 
@@ -27,9 +27,7 @@ public:
   VelocityJointSaturationHandle(const hardware_interface::JointHandle& jh, const JointLimits& limits)
     : jh_(jh), limits_(limits)
   {
-    if (!limits.has_velocity_limits)
-      throw JointLimitsInterfaceException("Cannot enforce limits for joint '" + getName() +
-                                          "'. It has no velocity limits specification.");
+    internal::requireLimits(limits.has_velocity_limits, getName(), "velocity");
   }
 
   std::string getName() const { return jh_.getName(); }
@@ -40,12 +38,7 @@ public:
     double vel_low = -limits_.max_velocity;
     double vel_high = limits_.max_velocity;
     if (limits_.has_acceleration_limits)
-    {
-      const double vel = jh_.getVelocity();
-      const double dv = limits_.max_acceleration * period.toSec();
-      vel_low = std::max(vel - dv, -limits_.max_velocity);
-      vel_high = std::min(vel + dv, limits_.max_velocity);
-    }
+      internal::limitAcceleration(limits_, jh_.getVelocity(), period.toSec(), vel_low, vel_high);
     jh_.setCommand(internal::saturate(jh_.getCommand(), vel_low, vel_high));
   }
 

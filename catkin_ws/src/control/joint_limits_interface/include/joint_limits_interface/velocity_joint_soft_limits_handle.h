@@ -8,7 +8,7 @@
 #include <hardware_interface/joint_command_interface.h>
 #include <ros/duration.h>
 
-#include <joint_limits_interface/internal/saturate.h>
+#include <joint_limits_interface/internal/limits_handle.h>
 #include <joint_limits_interface/joint_limits.h>
 
 namespace joint_limits_interface
@@ -39,25 +39,11 @@ public:
   /// \param period control period (used with acceleration limits)
   void enforceLimits(const ros::Duration& period)
   {
-    using internal::saturate;
-    double min_vel = -max_vel_limit_;
-    double max_vel = max_vel_limit_;
-    if (limits_.has_position_limits)
-    {
-      const double pos = jh_.getPosition();
-      min_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.min_position), -max_vel_limit_,
-                         max_vel_limit_);
-      max_vel = saturate(-soft_limits_.k_position * (pos - soft_limits_.max_position), -max_vel_limit_,
-                         max_vel_limit_);
-    }
+    const double pos = limits_.has_position_limits ? jh_.getPosition() : 0.0;
+    auto range = internal::softVelocityRange(limits_, soft_limits_, pos, max_vel_limit_);
     if (limits_.has_acceleration_limits)
-    {
-      const double vel = jh_.getVelocity();
-      const double dv = limits_.max_acceleration * period.toSec();
-      min_vel = std::max(vel - dv, min_vel);
-      max_vel = std::min(vel + dv, max_vel);
-    }
-    jh_.setCommand(saturate(jh_.getCommand(), min_vel, max_vel));
+      internal::limitAcceleration(limits_, jh_.getVelocity(), period.toSec(), range.first, range.second);
+    jh_.setCommand(internal::saturate(jh_.getCommand(), range.first, range.second));
   }
 
   /// Stateless: nothing to reset.
