@@ -22,11 +22,16 @@ class Main(Base):
                                       plugin_argument_provider=plugin_argument_provider)
 
     def create_providers(self):
-        from rqt_gui_py.ros_py_plugin_provider import QtPyPluginProvider, RosPyPluginProvider
+        """As the original: the providers that packages export for rqt_gui (rqt_gui_py's
+        RosPyPluginProvider) found through the plugin framework, and plain qt_gui plugins."""
+        from qt_gui.recursive_plugin_provider import RecursivePluginProvider
+        from rqt_gui.rospkg_plugin_provider import RospkgPluginProvider
         if self._ros_pack is None:
             from rospkg import RosPack
             self._ros_pack = RosPack()
-        return [RosPyPluginProvider(self._ros_pack), QtPyPluginProvider(self._ros_pack)]
+        providers = RospkgPluginProvider('rqt_gui', 'rqt_gui_py::PluginProvider', self._ros_pack)
+        return [RecursivePluginProvider(providers, context=self._ros_pack),
+                RospkgPluginProvider('qt_gui', 'qt_gui_py::Plugin', self._ros_pack)]
 
     def application_icon(self):
         try:

@@ -1,8 +1,10 @@
-"""Finds plugin.xml files exported by ROS packages (`<export><TAG plugin="${prefix}/plugin.xml"/>`)."""
+"""Finds plugin.xml files exported by ROS packages (`<export><TAG plugin="${prefix}/plugin.xml"/>`),
+and the provider of the Python plugins among them (the original's RospkgPluginProvider)."""
 import os
 import xml.etree.ElementTree as ET
 
 from qt_gui.plugin_descriptor import PluginXmlError, parse_plugin_xml
+from qt_gui.plugin_provider import PythonPluginProvider
 
 
 def exported_plugin_xmls(package_path, export_tag):
@@ -45,3 +47,22 @@ def crawl(rospack, export_tag, base_class_type):
             except PluginXmlError as e:
                 errors.append('RospkgPluginProvider: %s' % e)
     return descriptors, errors
+
+
+class RospkgPluginProvider(PythonPluginProvider):
+    """The Python classes of base `base_class_type` in the plugin.xml files that the packages on
+    ROS_PACKAGE_PATH export under `export_tag` (e.g. 'qt_gui' and 'qt_gui_py::Plugin', or 'rqt_gui'
+    and 'rqt_gui_py::PluginProvider' for the providers a RecursivePluginProvider loads)."""
+
+    def __init__(self, export_tag, base_class_type, rospack=None):
+        super(RospkgPluginProvider, self).__init__()
+        self.export_tag = export_tag
+        self.base_class_type = base_class_type
+        self._rospack = rospack
+
+    def discover(self):
+        if self._rospack is None:
+            from rospkg import RosPack
+            self._rospack = RosPack()
+        descriptors, self.errors = crawl(self._rospack, self.export_tag, self.base_class_type)
+        return descriptors

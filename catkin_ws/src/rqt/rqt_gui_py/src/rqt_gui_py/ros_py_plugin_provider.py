@@ -1,11 +1,12 @@
-"""Providers of Python plugins: `rqt_gui_py::Plugin` (needs a ROS master and one rospy node per
-process) and plain `qt_gui_py::Plugin`."""
+"""The provider of Python rqt plugins (`rqt_gui_py::Plugin`: they need a ROS master and one rospy
+node per process). rqt_gui finds it as the original does, through the plugin framework: this
+package's plugin.xml exports it with base class `rqt_gui_py::PluginProvider`."""
 import os
 import socket
 import sys
 
-from qt_gui.plugin_provider import PluginLoadError, PythonPluginProvider
-from rqt_gui.rospkg_plugin_provider import crawl
+from qt_gui.plugin_provider import PluginLoadError
+from rqt_gui.rospkg_plugin_provider import RospkgPluginProvider
 
 _node_started = False
 
@@ -57,17 +58,10 @@ def init_node():
     _node_started = True
 
 
-class RosPyPluginProvider(PythonPluginProvider):
-    export_tag = 'rqt_gui'
-    base_class_type = 'rqt_gui_py::Plugin'
+class RosPyPluginProvider(RospkgPluginProvider):
 
-    def __init__(self, rospack):
-        super(RosPyPluginProvider, self).__init__()
-        self._rospack = rospack
-
-    def discover(self):
-        descriptors, self.errors = crawl(self._rospack, self.export_tag, self.base_class_type)
-        return descriptors
+    def __init__(self, rospack=None):
+        super(RosPyPluginProvider, self).__init__('rqt_gui', 'rqt_gui_py::Plugin', rospack)
 
     def load_class(self, descriptor):
         if not wait_for_master():
@@ -76,11 +70,3 @@ class RosPyPluginProvider(PythonPluginProvider):
         init_node()
         return super(RosPyPluginProvider, self).load_class(descriptor)
 
-
-class QtPyPluginProvider(RosPyPluginProvider):
-    """Plain Qt plugins (`<export><qt_gui plugin=.../>`, base `qt_gui_py::Plugin`): no ROS."""
-    export_tag = 'qt_gui'
-    base_class_type = 'qt_gui_py::Plugin'
-
-    def load_class(self, descriptor):
-        return PythonPluginProvider.load_class(self, descriptor)
