@@ -27,8 +27,8 @@ import math
 import os
 import xml.etree.ElementTree as ET
 
+from grading import package, urdf
 from grading.common import Criterion, reason, variant
-from grading import lab3
 
 PACKAGE = 'my_robot_simulation_control'
 GRADER_PKG = 'lab4_grader'
@@ -115,8 +115,8 @@ def find_launch(pkg_dir):
 
 def launch_args(path, isu):
     """`name:=value` for the variant and headless args the launch file declares."""
-    declared = lab3.launch_args(path)
-    out = lab3.variant_args(declared, isu)
+    declared = package.launch_args(path)
+    out = package.variant_args(declared, isu)
     out += ['%s:=%s' % (n, v) for n, v in HEADLESS_ARGS if n in declared]
     return out
 
@@ -328,9 +328,9 @@ def evaluate(obs):
         c['6'].set(False, why)
     else:
         try:
-            model = lab3.parse_urdf(desc)
-            an_body = lab3.body_link(model)
-            size = lab3.body_size(model, an_body)
+            model = urdf.parse_urdf(desc)
+            an_body = urdf.body_link(model)
+            size = urdf.body_size(model, an_body)
             off = max(abs(a - b) for a, b in zip(size, want['body']))
             dims = '%.0fx%.0fx%.0f' % tuple(size)
             wdims = '%gx%gx%g' % tuple(want['body'])
@@ -339,7 +339,7 @@ def evaluate(obs):
                                          'body %s: %s mm, the variant wants %s mm (tolerance ±%g mm)' % (an_body, dims, wdims, SIZE_TOL)))
             else:
                 c['2'].set(True, reason('корпус %s: %s мм' % (an_body, dims), 'body %s: %s mm' % (an_body, dims)))
-        except lab3.ModelError as e:
+        except urdf.ModelError as e:
             c['2'].set(False, reason('/robot_description: %s' % e, '/robot_description: %s' % e))
         plugins = drive_plugins(desc)
         if plugins:

@@ -4,8 +4,10 @@ import re
 
 import pytest
 
-from grading import lab3
+from grading import package
 from grading.common import load_variants
+from grading.lab3 import model, rules, rviz
+from grading.urdf import ModelError, body_size, parse_urdf, root_link
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -56,85 +58,85 @@ def test_reference_xacro_carries_the_same_table():
 
 
 def test_analyse_wheels_arm_links():
-    m = lab3.parse_urdf(robot(*base(), link('mount'), joint('mount_j', 'fixed', 'base_link', 'mount'),
+    m = parse_urdf(robot(*base(), link('mount'), joint('mount_j', 'fixed', 'base_link', 'mount'),
                               link('a1'), joint('j1', 'revolute', 'mount', 'a1'),
                               link('a2', 'cylinder'), joint('j2', 'prismatic', 'a1', 'a2'),
                               link('a3'), joint('j3', 'continuous', 'a2', 'a3'),
                               link('ball', 'sphere'), joint('ball_j', 'fixed', 'base_link', 'ball'),
                               link('cam'), joint('cam_j', 'fixed', 'base_link', 'cam')))
-    a = lab3.analyse(m)
+    a = model.analyse(m)
     assert a['arm'] == ['j1', 'j2', 'j3'] and a['arm_codes'] == 'RPC'
     assert sorted(a['wheels']) == [('ball_j', 'S'), ('wl_j', 'C'), ('wr_j', 'C')]
     assert a['links'] == ['a1', 'a2', 'a3', 'base_link', 'cam', 'mount']
-    assert [round(x) for x in lab3.body_size(m, 'base_link')] == [200, 140, 90]
+    assert [round(x) for x in body_size(m, 'base_link')] == [200, 140, 90]
 
 
 def test_branching_arm_and_mimic():
-    m = lab3.parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
+    m = parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
                               link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
                               link('f2'), joint('f2', 'prismatic', 'a1', 'f2')))
-    assert lab3.analyse(m)['branch'] == ('f1', 'f2')
-    m = lab3.parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
+    assert model.analyse(m)['branch'] == ('f1', 'f2')
+    m = parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
                               link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
                               link('f2'), joint('f2', 'prismatic', 'a1', 'f2', mimic=True)))
-    a = lab3.analyse(m)
+    a = model.analyse(m)
     assert a['branch'] is None and a['arm_codes'] == 'RP'
 
 
 def test_rotated_body_box_and_missing_box():
-    m = lab3.parse_urdf(robot(link('base_link', dims='0.14 0.2 0.09', rpy='0 0 1.5707963')))
-    assert [round(x) for x in lab3.body_size(m, 'base_link')] == [200, 140, 90]
-    m = lab3.parse_urdf(robot(link('base_link', 'cylinder')))
-    with pytest.raises(lab3.ModelError, match='base_link has no box collision'):
-        lab3.body_size(m, 'base_link')
+    m = parse_urdf(robot(link('base_link', dims='0.14 0.2 0.09', rpy='0 0 1.5707963')))
+    assert [round(x) for x in body_size(m, 'base_link')] == [200, 140, 90]
+    m = parse_urdf(robot(link('base_link', 'cylinder')))
+    with pytest.raises(ModelError, match='base_link has no box collision'):
+        body_size(m, 'base_link')
 
 
 def test_link_problems():
-    m = lab3.parse_urdf(robot(link('base_footprint', shape=None, visual=False, inertial=False),
+    m = parse_urdf(robot(link('base_footprint', shape=None, visual=False, inertial=False),
                               joint('fp', 'fixed', 'base_footprint', 'base_link'),
                               link('base_link', mass='0'), link('w', shape=None),
                               joint('wj', 'continuous', 'base_link', 'w'),
                               link('x', inertial=False), joint('xj', 'fixed', 'base_link', 'x')))
-    assert lab3.link_problems(m) == ['base_link: mass 0', 'w: no <collision>', 'x: no <inertial>']
+    assert model.link_problems(m) == ['base_link: mass 0', 'w: no <collision>', 'x: no <inertial>']
 
 
 def test_parse_errors_are_one_line():
-    with pytest.raises(lab3.ModelError, match='not XML'):
-        lab3.parse_urdf('<robot>')
-    with pytest.raises(lab3.ModelError, match='2 trees'):
-        lab3.root_link(lab3.parse_urdf(robot(link('a'), link('b'))))
-    with pytest.raises(lab3.ModelError, match='box size'):
-        lab3.parse_urdf(robot(link('a', dims='0.1 0.1')))
+    with pytest.raises(ModelError, match='not XML'):
+        parse_urdf('<robot>')
+    with pytest.raises(ModelError, match='2 trees'):
+        root_link(parse_urdf(robot(link('a'), link('b'))))
+    with pytest.raises(ModelError, match='box size'):
+        parse_urdf(robot(link('a', dims='0.1 0.1')))
 
 
 def test_rviz_config_and_command_line():
     cfg = ('Visualization Manager:\n  Displays:\n    - Class: rviz/Grid\n    - Class: rviz/Group\n'
            '      Displays:\n        - Class: rviz/RobotModel\n    - Class: rviz/TF\n      Enabled: false\n'
            '  Global Options:\n    Fixed Frame: base_link\n')
-    assert lab3.rviz_displays(cfg) == (['rviz/Grid', 'rviz/Group', 'rviz/RobotModel'], 'base_link')
-    with pytest.raises(lab3.ModelError):
-        lab3.rviz_displays('Panels: []\n')
-    assert lab3.rviz_config_arg(['/usr/bin/rviz', '-d', '/x.rviz', '__name:=rviz']) == '/x.rviz'
-    assert lab3.rviz_config_arg(['/usr/bin/rviz', '--display-config=/y.rviz']) == '/y.rviz'
-    assert lab3.rviz_config_arg(['/usr/bin/rviz']) is None
-    assert lab3.node_kind(['/usr/bin/python3', '/usr/lib/joint_state_publisher_gui/joint_state_publisher_gui']) == 'joint_state_publisher'
-    assert lab3.node_kind(['/usr/lib/robot_state_publisher/robot_state_publisher', '__name:=x']) == 'robot_state_publisher'
-    assert lab3.node_kind(['/usr/bin/python3', '/tmp/talker.py']) is None
+    assert rviz.rviz_displays(cfg) == (['rviz/Grid', 'rviz/Group', 'rviz/RobotModel'], 'base_link')
+    with pytest.raises(ModelError):
+        rviz.rviz_displays('Panels: []\n')
+    assert rviz.rviz_config_arg(['/usr/bin/rviz', '-d', '/x.rviz', '__name:=rviz']) == '/x.rviz'
+    assert rviz.rviz_config_arg(['/usr/bin/rviz', '--display-config=/y.rviz']) == '/y.rviz'
+    assert rviz.rviz_config_arg(['/usr/bin/rviz']) is None
+    assert rviz.node_kind(['/usr/bin/python3', '/usr/lib/joint_state_publisher_gui/joint_state_publisher_gui']) == 'joint_state_publisher'
+    assert rviz.node_kind(['/usr/lib/robot_state_publisher/robot_state_publisher', '__name:=x']) == 'robot_state_publisher'
+    assert rviz.node_kind(['/usr/bin/python3', '/tmp/talker.py']) is None
 
 
 def test_variant_args(tmp_path):
     p = tmp_path / 'm.xacro'
     p.write_text('<robot xmlns:xacro="http://www.ros.org/wiki/xacro"><xacro:arg name="variant" default="1"/></robot>')
-    assert lab3.variant_args(lab3.xacro_args(str(p)), '123457') == ['variant:=7']
+    assert package.variant_args(model.xacro_args(str(p)), '123457') == ['variant:=7']
     p.write_text('<robot/>')
-    assert lab3.variant_args(lab3.xacro_args(str(p)), '123457') == []
+    assert package.variant_args(model.xacro_args(str(p)), '123457') == []
 
 
 def obs_for(urdf, **launch):
     la = {'robot_description': urdf, 'kinds': {'robot_state_publisher': ['/rsp'], 'joint_state_publisher': ['/jsp'],
                                                 'rviz': ['/rviz']},
           'rviz': {'config': '/c.rviz', 'classes': ['rviz/RobotModel', 'rviz/TF'], 'fixed_frame': 'base_link'},
-          'tf_frames': sorted(lab3.parse_urdf(urdf)['links']), 'ready_after': 3.0}
+          'tf_frames': sorted(parse_urdf(urdf)['links']), 'ready_after': 3.0}
     la.update(launch)
     return {'isu': '1231', 'model_found': True, 'urdf': urdf, 'xacro_args': [], 'launch': la}
 
@@ -144,17 +146,17 @@ V1 = robot(*base(), link('a1'), joint('j1', 'revolute', 'base_link', 'a1'), link
 
 
 def test_evaluate_variant_1():
-    crits = lab3.evaluate(obs_for(V1))
+    crits = rules.evaluate(obs_for(V1))
     assert [c.passed for c in crits] == [True] * 7, [c.reason['en'] for c in crits]
-    no_tf = lab3.evaluate(obs_for(V1, tf_frames=['base_link']))[6]
+    no_tf = rules.evaluate(obs_for(V1, tf_frames=['base_link']))[6]
     assert not no_tf.passed and 'no TF for links: a1, a2, a3, a4, wl, wr' in no_tf.reason['en']
-    no_cfg = lab3.evaluate(obs_for(V1, rviz={'config': None}))[6]
+    no_cfg = rules.evaluate(obs_for(V1, rviz={'config': None}))[6]
     assert not no_cfg.passed and 'rviz runs without a config' in no_cfg.reason['en']
-    no_tf_disp = lab3.evaluate(obs_for(V1, rviz={'config': '/c.rviz', 'classes': ['rviz/RobotModel'], 'fixed_frame': 'map'}))[6]
+    no_tf_disp = rules.evaluate(obs_for(V1, rviz={'config': '/c.rviz', 'classes': ['rviz/RobotModel'], 'fixed_frame': 'map'}))[6]
     assert 'has no TF display' in no_tf_disp.reason['en'] and 'Fixed Frame "map"' in no_tf_disp.reason['en']
-    other = lab3.evaluate(obs_for(V1, robot_description=robot(*base())))[6]
+    other = rules.evaluate(obs_for(V1, robot_description=robot(*base())))[6]
     assert 'holds another model' in other.reason['en']
-    bad = lab3.evaluate({'isu': '1231', 'model_found': True, 'xacro_error': 'Undefined property x',
+    bad = rules.evaluate({'isu': '1231', 'model_found': True, 'xacro_error': 'Undefined property x',
                          'launch': {'error': 'launch/lab3_setup.launch not found in package my_firts_robot_model'}})
     assert [c.passed for c in bad] == [False] * 7
     assert bad[0].reason['en'] == 'xacro: Undefined property x' and 'not checked' in bad[1].reason['en']
@@ -165,14 +167,14 @@ def test_links_pass_in_either_count():
     arm = [link('a1'), joint('j1', 'prismatic', 'base_link', 'a1'), link('a2'), joint('j2', 'revolute', 'a1', 'a2'),
            link('a3'), joint('j3', 'revolute', 'a2', 'a3')]
     obs = dict(obs_for(robot(*base(), *arm)), isu='1232')            # variant 2: 6 links, PRR, CC
-    c2 = lab3.evaluate(obs)[1]
+    c2 = rules.evaluate(obs)[1]
     assert c2.passed and c2.reason['en'].startswith('6 links in the model (every <link>, as the book counts)'), c2.reason
     helpers = [link('mount'), joint('m_j', 'fixed', 'base_link', 'mount'), link('grip'), joint('g_j', 'fixed', 'a3', 'grip')]
     obs = dict(obs_for(robot(*base(), *arm, *helpers)), isu='1232')  # 8 links, 6 without the wheels
-    c2 = lab3.evaluate(obs)[1]
+    c2 = rules.evaluate(obs)[1]
     assert c2.passed and c2.reason['en'].startswith('6 links without wheels'), c2.reason
     obs = dict(obs_for(robot(*base(), *arm[:4])), isu='1232')         # 5 links, 3 without the wheels
-    c2 = lab3.evaluate(obs)[1]
+    c2 = rules.evaluate(obs)[1]
     assert not c2.passed
     assert c2.reason['en'] == ('the model has 5 links (every <link>), 3 without wheels (a1, a2, base_link); '
                                'the variant wants 6 in either count')
