@@ -34,7 +34,12 @@ void* grc_create(const char* ns, const char* estop_topic, char* error, int error
   std::lock_guard<std::mutex> guard(g_lock);
   if (!ros::isInitialized())
   {
+    // the simulator hands the sim time to every grc_update() (ros::Time::setNow), so this
+    // roscpp does not subscribe to the /clock its own process publishes (with /use_sim_time
+    // ros::start() would: a thousand messages a wall second received over TCP, at many times
+    // real time, for a time it already has)
     ros::M_string remappings;
+    remappings["/clock"] = "/gazebo/inprocess_clock_unused";
     ros::init(remappings, "gazebo_ros_control",
               ros::init_options::AnonymousName | ros::init_options::NoSigintHandler);
   }
@@ -66,6 +71,8 @@ void grc_update(void* handle, long long stamp_ns, const double* position, const 
 {
   ros::Time t;
   t.fromNSec(static_cast<uint64_t>(stamp_ns));
+  if (ros::Time::isSimTime())
+    ros::Time::setNow(t);  // what the /clock subscription did (see grc_create)
   static_cast<gazebo_ros_control::GazeboRosControlNode*>(handle)->stepDirect(t, position, velocity, effort,
                                                                             command);
 }

@@ -155,3 +155,28 @@ def test_node_exits_with_simulator(env, tmp_path):
         sim.stop()
         if not gone(node):
             os.kill(node, signal.SIGKILL)
+
+
+def test_inprocess_does_not_receive_its_own_clock(env, tmp_path):
+    """The in-process controller manager gets the sim time from each step (ros::Time::setNow
+    in grc_update), so its roscpp does not subscribe to the /clock its own process publishes;
+    and the simulator runs it: the controllers load, start and publish stamped joint states."""
+    import rosgraph
+    sim, _ = start_sim(env, tmp_path, 'clock', 'inprocess')
+    spawner = None
+    try:
+        master = rosgraph.Master('/test_lockstep', master_uri=env['ROS_MASTER_URI'])
+        subs = dict(master.getSystemState()[1])
+        assert any(n.startswith('/gazebo_ros_control') for ns in subs.values() for n in ns), subs
+        assert not [n for n in subs.get('/clock', []) if n.startswith('/gazebo')], subs['/clock']
+        sh(['rosservice', 'call', '/gazebo/unpause_physics'], env)
+        spawner = Proc(['rosrun', 'controller_manager', 'spawner', 'joint_state_controller',
+                        '--namespace', '/rig', '--timeout', '90'], env=env,
+                       log=str(tmp_path / 'spawner_clock.log'))
+        out = sh(['rostopic', 'echo', '-n', '1', '/rig/joint_states/header/stamp'], env,
+                 timeout=120)
+        assert 'secs' in out and out.strip() != 'secs: 0\nnsecs:         0', out
+    finally:
+        if spawner is not None:
+            spawner.stop()
+        sim.stop()
