@@ -365,3 +365,15 @@ def test_inline_sdf14_model_and_relative_mesh_saved_elsewhere(tmp_path):
     assert np.allclose(d1.joints[0].axis, [1, 0, 0]) and np.allclose(d2.joints[0].axis, [1, 0, 0])
     assert d2.links[0].collisions[0].geometry.filename == str(a / 'meshes' / 'cube.stl')
     assert 'file://' + str(a / 'meshes' / 'cube.stl') in text
+
+
+def test_spawned_sdf_model_keeps_its_robot_namespace():
+    text = BOX.replace('</link></model>', '</link><plugin name="p3d" filename="libgazebo_ros_p3d.so">'
+                       '<bodyName>link</bodyName></plugin>'
+                       '<plugin name="own" filename="libgazebo_ros_p3d.so"><robotNamespace>/x'
+                       '</robotNamespace></plugin></model>')
+    assert text != BOX
+    desc = sdf.parse_sdf_model(text, 'spawn', name='b')
+    desc.robot_namespace = '/ns1'
+    el = save_world.saved_model(desc, Pose())
+    assert [p.findtext('robotNamespace') for p in el.iter('plugin')] == ['/ns1', '/x']

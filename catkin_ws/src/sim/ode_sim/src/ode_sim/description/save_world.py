@@ -309,6 +309,10 @@ def saved_model(desc, pose):
         el = copy.deepcopy(desc.sdf_element)
         el.set('name', desc.name)
         _set_pose(el, pose)
+        if desc.robot_namespace:        # what spawn_sdf_model's robot_namespace injected
+            for p in el.iter('plugin'):
+                if p.find('robotNamespace') is None:
+                    _sub(p, 'robotNamespace', desc.robot_namespace)
         return el
     return model_element(desc, pose)
 
