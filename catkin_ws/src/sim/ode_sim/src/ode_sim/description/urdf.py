@@ -19,7 +19,8 @@ from ode_sim.description import materials
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Material,
                                        Model, ModelError, Visual)
 from ode_sim.description.resolve import ModelPaths
-from ode_sim.description.sdf_elements import check_inertial, load_mesh_geometry, parse_sensor
+from ode_sim.description.sdf_elements import check_inertial, load_mesh_geometry
+from ode_sim.description.sdf_sensors import parse_sensor
 from ode_sim.description.xmldoc import ParseContext, parse_xml
 from ode_sim.description.transforms import Pose
 from ode_sim.description.urdf_ext import GazeboExtensions

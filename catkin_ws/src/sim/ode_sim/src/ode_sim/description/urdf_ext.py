@@ -1,7 +1,8 @@
 """The <gazebo> and <transmission> parts of a URDF (urdf.py's parser inherits these methods):
 per-link and per-joint Gazebo extensions, surfaces, plugins and ros_control transmissions."""
 from ode_sim.description.model import Surface, Transmission
-from ode_sim.description.sdf_elements import parse_plugin, parse_surface
+from ode_sim.description.sdf_elements import parse_surface
+from ode_sim.description.sdf_sensors import parse_plugin
 
 TRUE = ('1', 'true', 'yes')
 IGNORED_LINK_EXT = ('dampingFactor', 'maxContacts', 'mu', 'kp_', 'velocity_decay',

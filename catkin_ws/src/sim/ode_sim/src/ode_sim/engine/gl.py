@@ -58,7 +58,6 @@ void main() {
 """
 
 
-
 def _fragment_shader(nlights, textured=False):
     """Per-pixel lighting, the light loop unrolled for `nlights` lights and branch-free (a
     loop over a uniform count with pow() costs llvmpipe ~3x as much); `textured`: the diffuse

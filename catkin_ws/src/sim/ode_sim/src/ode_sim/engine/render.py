@@ -109,7 +109,8 @@ class Renderer:
                              % (self.width, self.height, e)) from None
 
     # ---------------------------------------------------------------- scene
-    def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1), background=(0.7, 0.7, 0.7, 1)):
+    def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1),
+                  background=(0.7, 0.7, 0.7, 1)):
         """Shapes (ShapeInstance visuals) and lights (model.Light) to draw from now on.
 
         GPU meshes are cached per geometry object (by identity) and part: calling again after

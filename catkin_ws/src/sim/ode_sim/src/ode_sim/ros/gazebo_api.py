@@ -223,9 +223,9 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         return msg
 
     def publish_markers(self):
-        """(Under the node's lock.) Scene markers of every model not spawned from URDF (robots are shown by RViz's
-        RobotModel): at once when models come or go, else twice a second of wall time while
-        someone listens (furniture may be pushed around)."""
+        """(Under the node's lock.) Scene markers of every model not spawned from URDF (robots
+        are shown by RViz's RobotModel): at once when models come or go, else twice a second
+        of wall time while someone listens (furniture may be pushed around)."""
         self._marker_version = self.physics.version
         self._next_marker = time.monotonic() + 0.5
         robots = {n for n, m in self.physics.models.items() if m.desc.urdf}
@@ -309,7 +309,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         res.parent_model_name = ''
         res.canonical_body_name = ''        # Gazebo leaves it empty
         res.body_names = list(m.links)
-        res.geom_names = [c.name for l in m.desc.links for c in l.collisions]
+        res.geom_names = [c.name for lk in m.desc.links for c in lk.collisions]
         res.joint_names = list(m.joints)
         res.child_model_names = []
         res.is_static = m.static

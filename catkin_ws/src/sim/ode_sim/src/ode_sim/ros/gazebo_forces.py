@@ -16,6 +16,7 @@ JOINT_TYPES = {'revolute': 0, 'continuous': 1, 'prismatic': 2, 'fixed': 3, 'ball
 ODE_PARAMS = (('hiStop', 1), ('loStop', 0), ('erp', 13), ('cfm', 8), ('stop_erp', 9),
               ('stop_cfm', 10), ('fudge_factor', 6), ('fmax', 5), ('vel', 2))
 
+
 class Job:
     """A wrench or joint effort of apply_body_wrench / apply_joint_effort, applied as
     gazebo_ros_api_plugin's schedulers do: before every step whose sim time t has
