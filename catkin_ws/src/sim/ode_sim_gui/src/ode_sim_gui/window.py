@@ -375,6 +375,8 @@ class MainWindow(QtWidgets.QMainWindow):
     def keyPressEvent(self, e):
         if e.key() == QtCore.Qt.Key_Escape:
             self.set_mode('select')
+        elif e.key() == QtCore.Qt.Key_Delete:      # a key event the shortcut map did not take
+            self.delete_selected()
         super().keyPressEvent(e)
 
     def closeEvent(self, e):
