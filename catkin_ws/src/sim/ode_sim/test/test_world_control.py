@@ -57,8 +57,8 @@ def test_insert_move_delete_step_save_and_reload(roscore, tmp_path):
         out = client(roscore, node, 'edit', saved)
     finally:
         node.stop()
-    for key in ('spawn_include', 'spawn_box', 'spawn_urdf', 'spawn_light', 'move', 'config',
-                'delete'):
+    for key in ('spawn_include', 'spawn_box', 'spawn_urdf', 'spawn_light', 'spawn_walls', 'move',
+                'config', 'delete'):
         assert out[key][0], (key, out[key])
     assert out['spawn_light_dup'] == [False, 'SpawnModel: Failure - entity already exists.']
     assert out['light_props'] == [True, pytest.approx(0.9)]
@@ -82,10 +82,13 @@ def test_insert_move_delete_step_save_and_reload(roscore, tmp_path):
     incs = {i.findtext('name'): i.findtext('uri') for i in w.findall('include')}
     assert incs == {'ground_plane': 'model://ground_plane', 'cone_kept': 'model://traffic_cone',
                     'cone_a': 'model://traffic_cone'}
-    assert {m.get('name') for m in w.findall('model')} == {'box_a', 'arm'}
+    assert {m.get('name') for m in w.findall('model')} == {'box_a', 'arm', 'walls_1'}
+    walls = next(m for m in w.findall('model') if m.get('name') == 'walls_1')
+    assert walls.findtext('static') == 'true' and len(walls.findall('link/collision')) == 2
     assert {l.get('name') for l in w.findall('light')} == {'sun', 'lamp_1'}
     before = out['state']
-    assert set(before['models']) == {'ground_plane', 'cone_kept', 'cone_a', 'box_a', 'arm'}
+    assert set(before['models']) == {'ground_plane', 'cone_kept', 'cone_a', 'box_a', 'arm',
+                                     'walls_1'}
     assert before['models']['box_a'][:2] == pytest.approx([3, 3], abs=0.01)
     assert before['joints']['shoulder'] == pytest.approx(0.6, abs=0.02)
 

@@ -119,6 +119,10 @@ def edit(saved_file):
     out['spawn_urdf'] = [r.success, r.status_message]
     r = spawn_sdf('lamp_1', LIGHT, '', pose(1, 0, 0), 'world')
     out['spawn_light'] = [r.success, r.status_message]
+    from ode_sim.description.walls import walls_model
+    r = spawn_sdf('walls_1', walls_model('walls_1', [(5, 5, 7, 5), (7, 5, 7, 7)]), '',
+                  pose(0, 0, 0), 'world')
+    out['spawn_walls'] = [r.success, r.status_message]
     r = spawn_sdf('lamp_1', LIGHT, '', pose(1, 0, 0), 'world')
     out['spawn_light_dup'] = [r.success, r.status_message]
     r = svc('/gazebo/get_light_properties', gs.GetLightProperties)('lamp_1')
