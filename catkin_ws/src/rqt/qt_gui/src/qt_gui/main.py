@@ -91,43 +91,9 @@ class Main(object):
              plugin_manager_settings_prefix=''):
         argv = list(sys.argv if argv is None else argv)
         prog = os.path.basename(argv[0] if argv else (self._invoked_filename or 'rqt'))
-        args_list = argv[1:]
-        parser = argparse.ArgumentParser(prog=prog, add_help=False)
-        help_wanted = '-h' in args_list or '--help' in args_list
-        # the plugin's own arguments are shown in the help; otherwise they are left unparsed and
-        # handed to the plugin (context.argv())
-        self._add_arguments(parser, standalone=bool(standalone),
-                            plugin_argument_provider=plugin_argument_provider if help_wanted else None)
-        plugin_args = []
-        if standalone:
-            args, plugin_args = parser.parse_known_args(args_list)
-            args.standalone_plugin = standalone
-            args.freeze_layout = False
-            args.lock_perspective = True
-            args.perspective = None
-            args.perspective_file = None
-            args.list_plugins = args.list_perspectives = False
-            args.plugin_args = plugin_args
-        else:
-            if '--args' in args_list:
-                i = args_list.index('--args')
-                plugin_args = args_list[i + 1:]
-                args = parser.parse_args(args_list[:i])
-                args.plugin_args = plugin_args
-                if not args.standalone_plugin:
-                    print('Option --args can only be used together with either --standalone, '
-                          '--command-start-plugin or --embed-plugin option')
-                    return 1
-            else:
-                args = parser.parse_args(args_list)
-                args.plugin_args = args.plugin_args or []
-            try:
-                self._validate(args)
-            except OptionError as e:
-                print(str(e))
-                return 1
-            if args.standalone_plugin:
-                args.lock_perspective = True
+        args = self._parse_command_line(prog, argv[1:], standalone, plugin_argument_provider)
+        if not isinstance(args, argparse.Namespace):
+            return args
         self.args = args
 
         if args.list_perspectives:
@@ -142,22 +108,83 @@ class Main(object):
                 p.reload_import = args.reload_import
 
         if args.list_plugins:
-            descriptors = []
-            for p in providers:
-                descriptors.extend(p.discover())
-                for line in p.errors:
-                    print(line, file=sys.stderr)
-            for name in sorted({d['full_name'] for d in descriptors}):
-                print(name)
+            self._list_plugins(providers)
             return 0
 
-        from python_qt_binding.QtCore import Qt, QTimer
+        self._build_window(args, argv[0] if argv else prog, providers)
+        found, standalone_id = self._find_standalone(args)
+        if not found:
+            return 1
+        if not args.lock_perspective:
+            self.main_window.build_menus(self)
+        else:
+            self.main_window.menuBar().hide()
+        if not self._open_plugins(args, standalone_id):
+            return 1
+        self._restore_window(standalone=bool(standalone_id))
+        self.main_window.closing.connect(self._save_on_close)
+        self.main_window.show()
+        self._exec()
+        return 0
+
+    def _parse_command_line(self, prog, args_list, standalone, plugin_argument_provider):
+        """The parsed options (argparse.Namespace, plugin_args set), or the exit code after a
+        usage error (printed)."""
+        parser = argparse.ArgumentParser(prog=prog, add_help=False)
+        help_wanted = '-h' in args_list or '--help' in args_list
+        # the plugin's own arguments are shown in the help; otherwise they are left unparsed and
+        # handed to the plugin (context.argv())
+        self._add_arguments(parser, standalone=bool(standalone),
+                            plugin_argument_provider=plugin_argument_provider if help_wanted else None)
+        if standalone:
+            args, plugin_args = parser.parse_known_args(args_list)
+            args.standalone_plugin = standalone
+            args.freeze_layout = False
+            args.lock_perspective = True
+            args.perspective = None
+            args.perspective_file = None
+            args.list_plugins = args.list_perspectives = False
+            args.plugin_args = plugin_args
+            return args
+        if '--args' in args_list:
+            i = args_list.index('--args')
+            args = parser.parse_args(args_list[:i])
+            args.plugin_args = args_list[i + 1:]
+            if not args.standalone_plugin:
+                print('Option --args can only be used together with either --standalone, '
+                      '--command-start-plugin or --embed-plugin option')
+                return 1
+        else:
+            args = parser.parse_args(args_list)
+            args.plugin_args = args.plugin_args or []
+        try:
+            self._validate(args)
+        except OptionError as e:
+            print(str(e))
+            return 1
+        if args.standalone_plugin:
+            args.lock_perspective = True
+        return args
+
+    @staticmethod
+    def _list_plugins(providers):
+        descriptors = []
+        for p in providers:
+            descriptors.extend(p.discover())
+            for line in p.errors:
+                print(line, file=sys.stderr)
+        for name in sorted({d['full_name'] for d in descriptors}):
+            print(name)
+
+    def _build_window(self, args, app_name, providers):
+        """The application, the main window and the plugin manager (plugins discovered)."""
+        from python_qt_binding.QtCore import Qt
         from python_qt_binding.QtGui import QIcon
         from python_qt_binding.QtWidgets import QApplication
         from qt_gui.main_window import MainWindow
         from qt_gui.plugin_manager import PluginManager
 
-        self.app = QApplication.instance() or QApplication([argv[0] if argv else prog])
+        self.app = QApplication.instance() or QApplication([app_name])
         self.app.setAttribute(Qt.AA_DontShowIconsInMenus, False)
         icon = self.application_icon()
         if icon:
@@ -180,51 +207,53 @@ class Main(object):
         self.prepare(args)
         self.plugin_manager.discover()
 
-        standalone_id = None
-        if args.standalone_plugin:
-            found = match_plugins(self.plugin_manager.descriptors(), args.standalone_plugin)
-            if not found:
-                print('qt_gui_main() found no plugin matching "%s"' % args.standalone_plugin)
-                print('try passing the option "--force-discover"')
-                return 1
-            if len(found) > 1:
-                print('qt_gui_main() found multiple plugins matching "%s"' % args.standalone_plugin)
-                print('\n'.join(sorted(d['full_name'] for d in found)))
-                return 1
-            standalone_id = found[0]['plugin_id']
+    def _find_standalone(self, args):
+        """(True, plugin id of --standalone or None without it), or (False, None) after printing
+        why no plugin or several plugins match."""
+        if not args.standalone_plugin:
+            return True, None
+        found = match_plugins(self.plugin_manager.descriptors(), args.standalone_plugin)
+        if not found:
+            print('qt_gui_main() found no plugin matching "%s"' % args.standalone_plugin)
+            print('try passing the option "--force-discover"')
+            return False, None
+        if len(found) > 1:
+            print('qt_gui_main() found multiple plugins matching "%s"' % args.standalone_plugin)
+            print('\n'.join(sorted(d['full_name'] for d in found)))
+            return False, None
+        return True, found[0]['plugin_id']
 
-        if not args.lock_perspective:
-            self.main_window.build_menus(self)
-        else:
-            self.main_window.menuBar().hide()
-
+    def _open_plugins(self, args, standalone_id):
+        """Loads the standalone plugin or restores the perspective; False when that failed."""
         if standalone_id:
             self.perspective = hidden_name(standalone_id)
             handler = self.plugin_manager.load_plugin(standalone_id, 0, args.plugin_args,
                                                       perspective=self.perspective)
             if handler is None:
-                return 1
+                return False
             if handler.docks:
                 self.main_window.setWindowTitle(handler.docks[0].windowTitle())
                 handler.docks[0].windowTitleChanged.connect(self.main_window.setWindowTitle)
+            return True
+        if args.perspective_file:
+            name = self.import_perspective(args.perspective_file)
+            if name is None:
+                return False
+            self.perspective = name
+        elif args.perspective:
+            self.perspective = args.perspective
         else:
-            if args.perspective_file:
-                name = self.import_perspective(args.perspective_file)
-                if name is None:
-                    return 1
-                self.perspective = name
-            elif args.perspective:
-                self.perspective = args.perspective
-            else:
-                self.perspective = str(self.qsettings.value('current-perspective') or 'Default')
-            self._remember_perspective(self.perspective)
-            self.plugin_manager.restore_perspective(self.perspective)
-            if not args.lock_perspective:
-                self.main_window.fill_perspectives_menu()
-        self._restore_window(standalone=bool(standalone_id))
-        self.main_window.closing.connect(self._save_on_close)
-        self.main_window.show()
+            self.perspective = str(self.qsettings.value('current-perspective') or 'Default')
+        self._remember_perspective(self.perspective)
+        self.plugin_manager.restore_perspective(self.perspective)
+        if not args.lock_perspective:
+            self.main_window.fill_perspectives_menu()
+        return True
 
+    def _exec(self):
+        """Qt's event loop until the window closes (SIGINT/SIGTERM close it), then the plugins
+        are unloaded and the settings written."""
+        from python_qt_binding.QtCore import QTimer
         signal.signal(signal.SIGINT, lambda *_: self.main_window.close())
         signal.signal(signal.SIGTERM, lambda *_: self.main_window.close())
         keepalive = QTimer()
@@ -232,6 +261,7 @@ class Main(object):
         keepalive.start(500)
         for fn in self.on_started:
             QTimer.singleShot(0, lambda fn=fn: fn(self))
+
         # an exception in a slot must not abort the whole GUI (PyQt5's default): log it
         def excepthook(kind, value, tb):
             import traceback
@@ -245,7 +275,6 @@ class Main(object):
         keepalive.stop()
         self.plugin_manager.unload_all()
         self.qsettings.sync()
-        return 0
 
     def _validate(self, args):
         if args.freeze_layout and not args.lock_perspective:
