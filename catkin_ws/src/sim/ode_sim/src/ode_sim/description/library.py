@@ -104,8 +104,8 @@ def list_models(env=None, database=False, library=None):
 
 def cache_dir(env=None):
     env = os.environ if env is None else env
-    base = env.get('XDG_CACHE_HOME') or os.path.join(env.get('HOME') or tempfile.gettempdir(),
-                                                    '.cache')
+    home = env.get('HOME') or tempfile.gettempdir()
+    base = env.get('XDG_CACHE_HOME') or os.path.join(home, '.cache')
     return os.path.join(base, 'ode_sim', 'thumbnails')
 
 
