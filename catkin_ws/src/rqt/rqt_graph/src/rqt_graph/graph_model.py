@@ -92,24 +92,54 @@ def build(snapshot, options=None):
 
     nodes = [n for n in nodes if node_ok(n)]
     if o['graph_type'] == NODE_NODE:
-        edges = []
-        for a, b, label in snapshot.get('nn_edges', []):
-            a, b, label = a.strip(), b.strip(), (label or '').strip()
-            if a not in nodes or b not in nodes:
-                continue
-            if o['quiet'] and label in QUIET_EDGE_LABELS:
-                continue
-            if o['hide_tf_nodes'] and label in TF_TOPICS:
-                continue
-            if not matches(o['topic_filter'], label):
-                continue
-            edges.append((a, b, label))
         m.nodes = sorted(nodes)
-        m.edges = sorted(set(edges))
+        m.edges = sorted(set(_node_node_edges(snapshot, nodes, o)))
         return m
 
-    raw = snapshot.get('nt_all_edges' if o['graph_type'] == NODE_TOPIC_ALL else 'nt_edges', [])
     node_set = set(nodes)
+    topics, edges = _node_topic_edges(snapshot, node_set, o)
+    rename = _group_renames(topics, o)
+    topics = set(rename.get(t, t) for t in topics)
+    edges = set((rename.get(a, a), rename.get(b, b), None) for a, b in edges)
+    used_nodes = set(x for e in edges for x in e[:2] if x in node_set)
+    m.nodes = sorted(used_nodes)
+    m.topics = sorted(topics)
+    m.edges = sorted(edges, key=lambda e: (e[0], e[1]))
+    return m
+
+
+def _node_node_edges(snapshot, nodes, o):
+    """(publisher, subscriber, topic) edges between the shown nodes (node graph)."""
+    edges = []
+    for a, b, label in snapshot.get('nn_edges', []):
+        a, b, label = a.strip(), b.strip(), (label or '').strip()
+        if a not in nodes or b not in nodes:
+            continue
+        if o['quiet'] and label in QUIET_EDGE_LABELS:
+            continue
+        if o['hide_tf_nodes'] and label in TF_TOPICS:
+            continue
+        if not matches(o['topic_filter'], label):
+            continue
+        edges.append((a, b, label))
+    return edges
+
+
+def _topic_ok(t, o):
+    if o['quiet'] and _quiet(t):
+        return False
+    if o['hide_tf_nodes'] and t in TF_TOPICS:
+        return False
+    if o['hide_dynamic_reconfigure'] and (t.endswith('/parameter_updates') or
+                                          t.endswith('/parameter_descriptions')):
+        return False
+    return matches(o['topic_filter'], t)
+
+
+def _node_topic_edges(snapshot, node_set, o):
+    """(shown topics, [(from, to)] edges between them and the shown nodes) of the node/topic
+    graphs, after the topic filters and the dead sink / leaf topic options."""
+    raw = snapshot.get('nt_all_edges' if o['graph_type'] == NODE_TOPIC_ALL else 'nt_edges', [])
     all_topics = set(t.strip() for t in snapshot.get('nt_nodes', []))
     edges = []
     for a, b in raw:
@@ -119,18 +149,7 @@ def build(snapshot, options=None):
         elif b in all_topics and a in node_set:
             edges.append((a, b))          # publisher -> topic
     topics = set(t for e in edges for t in e if t in all_topics)
-
-    def topic_ok(t):
-        if o['quiet'] and _quiet(t):
-            return False
-        if o['hide_tf_nodes'] and t in TF_TOPICS:
-            return False
-        if o['hide_dynamic_reconfigure'] and (t.endswith('/parameter_updates') or
-                                              t.endswith('/parameter_descriptions')):
-            return False
-        return matches(o['topic_filter'], t)
-
-    topics = set(t for t in topics if topic_ok(t))
+    topics = set(t for t in topics if _topic_ok(t, o))
     edges = [e for e in edges if (e[0] in topics) != (e[1] in topics)]
     if o['hide_dead_sinks']:
         has_sub = set(a for a, b in edges if a in topics)
@@ -142,41 +161,39 @@ def build(snapshot, options=None):
                 if t in topics:
                     count[t] = count.get(t, 0) + 1
         topics = set(t for t in topics if count.get(t, 0) >= 2)
-    edges = [e for e in edges if e[0] in topics or e[1] in topics]
+    return topics, [e for e in edges if e[0] in topics or e[1] in topics]
 
-    # grouping: tf, actions, images
+
+def _group_by_suffix(topics, suffixes, complete, group_name):
+    """{topic: HEAD/group_name} for the topics HEAD/SUFFIX whose HEAD has `complete(tails)`."""
+    prefixes = {}
+    for t in topics:
+        head, _, tail = t.rpartition('/')
+        if tail in suffixes:
+            prefixes.setdefault(head, set()).add(tail)
+    rename = {}
+    for head, tails in prefixes.items():
+        if complete(tails):
+            for tail in tails:
+                rename['%s/%s' % (head, tail)] = '%s/%s' % (head, group_name)
+    return rename
+
+
+def _group_renames(topics, o):
+    """Grouping of tf, action and image topics: {topic: group node}."""
     rename = {}
     if o['group_tf']:
         for t in TF_TOPICS:
             if t in topics:
                 rename[t] = '/tf'
     if o['group_actions']:
-        prefixes = {}
-        for t in topics:
-            head, _, tail = t.rpartition('/')
-            if tail in ACTION_SUFFIXES:
-                prefixes.setdefault(head, set()).add(tail)
-        for head, tails in prefixes.items():
-            if len(tails) == len(ACTION_SUFFIXES):
-                for tail in tails:
-                    rename['%s/%s' % (head, tail)] = '%s/action_topics' % head
+        rename.update(_group_by_suffix(topics, ACTION_SUFFIXES,
+                                       lambda tails: len(tails) == len(ACTION_SUFFIXES),
+                                       'action_topics'))
     if o['group_images']:
-        prefixes = {}
-        for t in topics:
-            head, _, tail = t.rpartition('/')
-            if tail in IMAGE_SUFFIXES:
-                prefixes.setdefault(head, set()).add(tail)
-        for head, tails in prefixes.items():
-            if len(tails) >= 3:
-                for tail in tails:
-                    rename['%s/%s' % (head, tail)] = '%s/image_topics' % head
-    topics = set(rename.get(t, t) for t in topics)
-    edges = set((rename.get(a, a), rename.get(b, b), None) for a, b in edges)
-    used_nodes = set(x for e in edges for x in e[:2] if x in node_set)
-    m.nodes = sorted(used_nodes)
-    m.topics = sorted(topics)
-    m.edges = sorted(edges, key=lambda e: (e[0], e[1]))
-    return m
+        rename.update(_group_by_suffix(topics, IMAGE_SUFFIXES, lambda tails: len(tails) >= 3,
+                                       'image_topics'))
+    return rename
 
 
 def dot_code(model, namespace_cluster=0):
