@@ -4,7 +4,9 @@ import os
 
 import pytest
 
-from grading import lab4
+from grading.lab4.motion import motion, pushed
+from grading.lab4.rules import evaluate
+from grading.lab4.scene import SceneError, analyse_scene, scene_verdict
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 REF = os.path.join(HERE, 'reference', 'my_robot_simulation_control')
@@ -22,8 +24,8 @@ def track(points):
 
 def test_reference_scene():
     with open(os.path.join(REF, 'worlds', 'lab4.world')) as f:
-        scene = lab4.analyse_scene(f.read())
-    ok, _ru, en = lab4.scene_verdict(scene, [MODELS])
+        scene = analyse_scene(f.read())
+    ok, _ru, en = scene_verdict(scene, [MODELS])
     assert ok, en
     assert 'barrel, chair, potted_plant, traffic_cone, trash_bin' in en
 
@@ -35,7 +37,7 @@ def test_scene_problems():
       <include><uri>model://barrel</uri><name>barrel2</name></include>
       <model name="m"><link name="l"><visual name="v"><geometry><mesh><uri>file://x.stl</uri></mesh></geometry></visual></link></model>
     </world></sdf>'''
-    ok, _ru, en = lab4.scene_verdict(lab4.analyse_scene(text), [MODELS])
+    ok, _ru, en = scene_verdict(analyse_scene(text), [MODELS])
     assert not ok
     assert en.startswith('no light (<light> or model://sun); no ground')
     assert 'no <gravity> with z < 0' in en
@@ -43,31 +45,31 @@ def test_scene_problems():
 
 
 def test_scene_not_xml():
-    with pytest.raises(lab4.SceneError):
-        lab4.analyse_scene('<sdf><world>')
+    with pytest.raises(SceneError):
+        analyse_scene('<sdf><world>')
 
 
 def test_motion_straight():
-    m = lab4.motion(track([(t * 0.1, 0.02 * t, 0.0, 0.0) for t in range(401)]))
+    m = motion(track([(t * 0.1, 0.02 * t, 0.0, 0.0) for t in range(401)]))
     assert m['path'] == pytest.approx(8.0) and m['reach'] == pytest.approx(8.0)
     assert m['turned'] == pytest.approx(0.0) and m['reversals'] == 0
 
 
 def test_motion_spin_in_place():
-    m = lab4.motion(track([(t * 0.1, 0.0, 0.0, 0.1 * t) for t in range(401)]))
+    m = motion(track([(t * 0.1, 0.0, 0.0, 0.1 * t) for t in range(401)]))
     assert m['path'] == pytest.approx(0.0) and m['turned'] == pytest.approx(40.0)
 
 
 def test_motion_oscillation():
     pts = [(t * 0.1, 0.5 * math.sin(t * 0.1 * 2 * math.pi / 4), 0.0, 0.0) for t in range(401)]
-    m = lab4.motion(track(pts))
+    m = motion(track(pts))
     assert m['reversals'] >= 15
 
 
 def test_pushed():
     a = (1.0, 0.0, 0.0) + q(0.0)
     objs = {'still': (a, a), 'pushed': (a, (1.1, 0.0, 0.0) + q(0.0)), 'turned': (a, (1.0, 0.0, 0.0) + q(0.5))}
-    assert [n for n, _, _ in lab4.pushed(objs)] == ['pushed', 'turned']
+    assert [n for n, _, _ in pushed(objs)] == ['pushed', 'turned']
 
 
 def obs(track_pts, objects=None, **launch):
@@ -81,7 +83,7 @@ def obs(track_pts, objects=None, **launch):
 
 def test_evaluate_spin_fails_8():
     pts = [(t * 0.1, 0.005 * t, 0.0, 0.3 * t) for t in range(401)]   # 2 m, 120 rad
-    crits = {c.id: c for c in lab4.evaluate(obs(pts))}
+    crits = {c.id: c for c in evaluate(obs(pts))}
     assert crits['7'].passed and not crits['8'].passed
     assert crits['8'].reason['en'].startswith('spinning in place: turned 120.0 rad over 2.00 m')
     assert not crits['2'].passed and 'did not appear' in crits['2'].reason['en']
@@ -91,13 +93,13 @@ def test_evaluate_spin_fails_8():
 def test_evaluate_collision_fails_9():
     a = (2.2, 0.0, 0.0) + q(0.0)
     pts = [(t * 0.1, 0.05 * t, 0.0, 0.0) for t in range(401)]
-    crits = {c.id: c for c in lab4.evaluate(obs(pts, {'barrel': (a, (2.5, 0.1, 0.0) + q(0.0))}))}
+    crits = {c.id: c for c in evaluate(obs(pts, {'barrel': (a, (2.5, 0.1, 0.0) + q(0.0))}))}
     assert not crits['9'].passed and crits['9'].reason['en'] == 'collision: barrel (moved 0.32 m)'
 
 
 def test_evaluate_short_run_says_wall_clock():
     pts = [(t * 0.1, 0.0, 0.0, 0.0) for t in range(101)]
-    crits = {c.id: c for c in lab4.evaluate(obs(pts))}
+    crits = {c.id: c for c in evaluate(obs(pts))}
     assert not crits['7'].passed
     assert 'only 10.0 s of sim time passed within 240 s of wall clock' in crits['7'].reason['en']
 
@@ -117,7 +119,7 @@ def crit5(controllers):
     o = obs([(t * 0.1, 0.05 * t, 0.0, 0.0) for t in range(401)], robot_description=desc,
             controllers=dict(controllers, joint_state_controller=ctrl('joint_state_controller/JointStateController',
                                                                      'JointStateInterface', ())))
-    return {c.id: c for c in lab4.evaluate(o)}['5']
+    return {c.id: c for c in evaluate(o)}['5']
 
 
 @pytest.mark.parametrize('ctype,iface', [

@@ -3,12 +3,7 @@
 controllers and motion (sim time), report."""
 from grading import lab4
 from grading.checker import run_checker
-from grading.observe import Lab4Observer
-
-
-def observe(isu, pkg_dir, workdir):
-    return Lab4Observer(isu, pkg_dir, workdir).run()
-
+from grading.lab4 import observer, rules
 
 if __name__ == '__main__':
-    run_checker(lab4, lab4, observe)
+    run_checker(lab4, rules, observer.observe)
