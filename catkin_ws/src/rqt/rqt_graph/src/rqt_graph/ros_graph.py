@@ -41,7 +41,12 @@ class RosGraphWidget(QWidget):
         self.node_items = {}
         self.edge_items = []
         self.error = None
+        self._create_controls()
+        self._lay_out()
+        self._connect()
+        self._snapshot = None
 
+    def _create_controls(self):
         self.refresh_graph_push_button = QPushButton(QIcon.fromTheme('view-refresh'), 'Refresh')
         self.refresh_graph_push_button.setToolTip('Refresh ROS graph')
         self.refresh_graph_push_button.setObjectName('refresh_graph_push_button')
@@ -73,6 +78,7 @@ class RosGraphWidget(QWidget):
             self.checkboxes[name] = cb
             setattr(self, name, cb)
 
+    def _lay_out(self):
         row1 = QHBoxLayout()
         for w in (self.refresh_graph_push_button, self.graph_type_combo_box, self.filter_line_edit,
                   self.topic_filter_line_edit, self.fit_in_view_push_button, self.save_dot_push_button,
@@ -104,6 +110,7 @@ class RosGraphWidget(QWidget):
         layout.addWidget(self.graphics_view, 1)
         layout.addWidget(self.status)
 
+    def _connect(self):
         self.refresh_graph_push_button.clicked.connect(self.refresh)
         self.graph_type_combo_box.currentIndexChanged.connect(self.redraw)
         self.filter_line_edit.editingFinished.connect(self.redraw)
@@ -116,7 +123,6 @@ class RosGraphWidget(QWidget):
         self.save_dot_push_button.clicked.connect(self.save_dot)
         self.save_svg_push_button.clicked.connect(self.save_svg)
         self.save_image_push_button.clicked.connect(self.save_image)
-        self._snapshot = None
 
     # ---- options --------------------------------------------------------------------------
     def options(self):
