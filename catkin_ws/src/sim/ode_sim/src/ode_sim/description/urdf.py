@@ -8,26 +8,20 @@ Follows what Gazebo classic does when it spawns a URDF (sdformat's URDF->SDF con
   converter's "urdf2sdf: link[NAME] has no inertia, not modeled in sdf"): a warning here;
 - a root link named 'world' fixes the model to the world.
 Link poses come from forward kinematics at zero joint positions; the model frame is the root
-link frame.
+link frame. The lumping and the links and joints it yields: urdf_lump.py.
 """
 import math
 import os
 
 import numpy as np
 
-from ode_sim.description import materials
-from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Material,
-                                       Model, ModelError, Visual)
+from ode_sim.description.model import Collision, Geometry, Inertial, Model, ModelError, Visual
 from ode_sim.description.resolve import ModelPaths
-from ode_sim.description.sdf_elements import check_inertial, load_mesh_geometry
-from ode_sim.description.sdf_sensors import parse_sensor
+from ode_sim.description.sdf_elements import load_mesh_geometry
 from ode_sim.description.xmldoc import ParseContext, parse_xml
 from ode_sim.description.transforms import Pose
 from ode_sim.description.urdf_ext import GazeboExtensions
-
-LUMP = '_fixed_joint_lump__'
-_IGNORED_JOINT_EXT = ('implicitSpringDamper', 'provideFeedback', 'stopCfm', 'stopErp',
-                      'cfmDamping', 'springReference', 'springStiffness', 'fudgeFactor')
+from ode_sim.description.urdf_lump import FixedJointLumping
 
 
 class _ULink:
@@ -54,7 +48,7 @@ class _UJoint:
         self.damping = self.friction = 0.0
 
 
-class _Parser(GazeboExtensions):
+class _Parser(GazeboExtensions, FixedJointLumping):
     def __init__(self, text, source, model_name, paths):
         self.source = source
         self.doc = parse_xml(text, source)
@@ -160,7 +154,8 @@ class _Parser(GazeboExtensions):
             return None
         if name:
             raise self.err(mat, "link '%s' material '%s' undefined: define <material name=%r> "
-                                "with <color rgba=...> at the robot level" % (link_name, name, name))
+                                "with <color rgba=...> at the robot level"
+                           % (link_name, name, name))
         return None
 
     def parse_link(self, el):
@@ -311,179 +306,6 @@ class _Parser(GazeboExtensions):
         model.warnings = self.warnings
         return model
 
-    def build(self, model, links, joints, root_name, order, link_ext, joint_ext):
-        for name, gs in joint_ext.items():
-            for g in gs:
-                for c in g:
-                    if isinstance(c.tag, str) and c.tag not in (
-                            'disableFixedJointLumping', 'preserveFixedJoint') + _IGNORED_JOINT_EXT:
-                        self.warn(c, "<gazebo reference='%s'><%s> is ignored" % (name, c.tag))
-
-        def reducible(j):
-            return (j.type == 'fixed' and j.parent != 'world'
-                    and not self.joint_flag(joint_ext, j.name, 'disableFixedJointLumping')
-                    and not self.joint_flag(joint_ext, j.name, 'preserveFixedJoint'))
-
-        world_root = root_name == 'world'
-        # forward kinematics of every URDF link; surviving link and pose relative to it
-        X, surv, rel = {}, {}, {}
-        pre = []                    # DFS pre-order
-        stack = [root_name]
-        while stack:
-            n = stack.pop()
-            pre.append(n)
-            ul = links[n]
-            j = ul.parent_joint
-            if j is None:
-                X[n] = Pose()
-                surv[n], rel[n] = n, Pose()
-            else:
-                X[n] = X[j.parent] * j.origin
-                if reducible(j):
-                    surv[n] = surv[j.parent]
-                    rel[n] = rel[j.parent] * j.origin
-                else:
-                    surv[n], rel[n] = n, Pose()
-            stack.extend(reversed([cj.child for cj in ul.child_joints]))
-        if world_root:
-            if links['world'].collisions or links['world'].visuals or links['world'].inertial:
-                self.warn(links['world'].el, "link 'world' is the world: its inertial, "
-                                             "collisions and visuals are ignored")
-        groups = {}
-        for n in pre:
-            if n == 'world' and world_root:
-                continue
-            groups.setdefault(surv[n], []).append(n)
-
-        # Gazebo leaves out non-lumped links without inertia, and everything below them
-        dropped = set()
-        for s in [n for n in pre if n in groups]:
-            if s in dropped:
-                continue
-            if all(links[m].inertial is None for m in groups[s]):
-                below = []
-                st = [s]
-                while st:
-                    x = st.pop()
-                    for cj in links[x].child_joints:
-                        below.append(cj.child)
-                        st.append(cj.child)
-                dropped.add(s)
-                dropped.update(below)
-                lost = sorted(set(surv[b] for b in below) - {s})
-                self.warn(links[s].el,
-                          "link '%s' has no <inertial>: like Gazebo (urdf2sdf: link[%s] has no "
-                          "inertia, not modeled in sdf) it is left out of the simulation%s"
-                          % (s, s, ', with the links below it: %s' % ', '.join(lost)
-                             if lost else ''))
-        survivors = [n for n in pre if n in groups and n not in dropped]
-        if not survivors:
-            raise ModelError("%s: link '%s' has zero mass (no <inertial>): the robot has no "
-                             "link to simulate; give it <inertial> with a positive <mass>"
-                             % (self.doc.where(links[root_name].el), root_name))
-
-        for s in survivors:
-            link = Link(name=s, pose=X[s])
-            members = groups[s]
-            link.inertial = self.lumped_inertial(links, members, rel)
-            check_inertial(link.inertial, "%s: link '%s'" % (self.source, s)
-                           + (' (with lumped %s)' % ', '.join(members[1:]) if members[1:] else ''))
-            for m in members[1:]:
-                link.lumped[m] = rel[m]
-            ci = vi = 0
-            used = set()
-            for m in members:
-                ext = self.link_extension(m, link_ext)
-                for col, _ in links[m].collisions:
-                    c = Collision(name=self.shape_name(s, m, col.name, '_collision', ci, used),
-                                  geometry=col.geometry, pose=rel[m] * col.pose)
-                    c.surface = self.surface_for(ext, m)
-                    if 'laserRetro' in ext:
-                        c.laser_retro = ext['laserRetro']
-                    link.collisions.append(c)
-                    ci += 1
-                for vis, _ in links[m].visuals:
-                    v = Visual(name=self.shape_name(s, m, vis.name, '_visual', vi, used),
-                               geometry=vis.geometry, pose=rel[m] * vis.pose, color=vis.color)
-                    if 'material' in ext:
-                        v.material_name = ext['material']
-                        v.color = materials.material_color(ext['material'], self.warnings,
-                                                           ext['material_where'])
-                    if 'visual_diffuse' in ext:
-                        v.color = ext['visual_diffuse']
-                    if ('material' in ext or 'visual_diffuse' in ext) and \
-                            v.geometry.kind == 'mesh' and v.geometry.parts:
-                        # Gazebo paints the whole mesh with the <gazebo> material, over the
-                        # file's own materials (a plain colour needs none: its look is v.color)
-                        v.material = Material(name=v.material_name, diffuse=tuple(v.color))
-                    link.visuals.append(v)
-                    vi += 1
-                if ext.get('selfCollide'):
-                    link.self_collide = True
-                if ext.get('gravity') is False:
-                    link.gravity = False
-                for sel in ext.get('sensors', []):
-                    sensor = parse_sensor(self.ctx, sel, s)
-                    sensor.pose = rel[m] * sensor.pose
-                    link.sensors.append(sensor)
-            model.links.append(link)
-
-        alive = set(survivors)
-        for n in pre:
-            j = links[n].parent_joint
-            if j is None or n not in alive or surv[n] != n:
-                continue
-            parent = 'world' if (j.parent == 'world' and world_root) else surv[j.parent]
-            joint = Joint(name=j.name, type=j.type, parent=parent, child=n)
-            joint.anchor = X[n].p.copy()
-            if j.type != 'fixed':
-                joint.axis = X[n].rotate(j.axis)
-            joint.lower, joint.upper = j.lower, j.upper
-            joint.effort, joint.velocity = j.effort, j.velocity
-            joint.damping, joint.friction = j.damping, j.friction
-            joint.origin = (Pose() if parent == 'world' else rel[j.parent]) * j.origin
-            model.joints.append(joint)
-        model.canonical_link = survivors[0]
-        model.urdf = self.doc_text
-
-    def lumped_inertial(self, links, members, rel):
-        parts = [(m, links[m].inertial) for m in members if links[m].inertial is not None]
-        if len(parts) == 1 and parts[0][0] == members[0]:
-            i = parts[0][1]
-            return Inertial(mass=i.mass, pose=i.pose.copy(), ixx=i.ixx, ixy=i.ixy, ixz=i.ixz,
-                            iyy=i.iyy, iyz=i.iyz, izz=i.izz)
-        total = sum(i.mass for _, i in parts)
-        if total <= 0:
-            return Inertial(mass=total)
-        coms, tensors = [], []
-        for m, i in parts:
-            f = rel[m] * i.pose                     # inertial frame in the surviving link
-            R = f.rotation()
-            coms.append(f.p)
-            tensors.append(R @ i.tensor() @ R.T)
-        com = sum(i.mass * c for (_, i), c in zip(parts, coms)) / total
-        t = np.zeros((3, 3))
-        for (_, i), c, ti in zip(parts, coms, tensors):
-            d = c - com
-            t += ti + i.mass * (np.dot(d, d) * np.eye(3) - np.outer(d, d))
-        return Inertial(mass=total, pose=Pose(com), ixx=t[0, 0], ixy=t[0, 1], ixz=t[0, 2],
-                        iyy=t[1, 1], iyz=t[1, 2], izz=t[2, 2])
-
-    @staticmethod
-    def shape_name(surv, member, urdf_name, suffix, index, used):
-        """Gazebo's names: LINK_collision, LINK_collision_1, ...; shapes of lumped links
-        SURV_fixed_joint_lump__LUMPED_collision."""
-        name = (urdf_name or member) + suffix
-        if index > 0:
-            name += '_%d' % index
-        if not name.startswith(surv):
-            name = surv + LUMP + name
-        base, k = name, 1
-        while name in used:
-            name = '%s_%d' % (base, k)
-            k += 1
-        used.add(name)
-        return name
 
 def parse_urdf(text, source, model_name, paths=None):
     """Model from URDF text. `source` names the file (or parameter) in messages and is the base
