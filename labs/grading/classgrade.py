@@ -23,11 +23,11 @@ from concurrent.futures import ThreadPoolExecutor
 
 import course_runtime
 
-from grading import lab1, lab2, lab3, lab4, sandbox
-from grading.common import LABS_DIR, Criterion, GradeError, load_variants, reason
+from grading import sandbox, slurm
+from grading.common import LABS_DIR, Criterion, GradeError, reason
+from grading.labs import LABS, load_variants
 from grading.report import format_report, write_junit
 
-LAB_MODULES = {'lab1': lab1, 'lab2': lab2, 'lab3': lab3, 'lab4': lab4}
 GRADE = os.path.join(LABS_DIR, 'grade')
 FETCH_TIMEOUT = 180.0
 BUILD_AND_SLACK = 420.0     # on top of the lab's checker time limit: the build and start-up
@@ -39,7 +39,7 @@ class RosterError(Exception):
 
 
 def criteria_of(lab):
-    return [('0', 'Пакет найден и собирается', 'Package found and builds')] + list(LAB_MODULES[lab].CRITERIA)
+    return [('0', 'Пакет найден и собирается', 'Package found and builds')] + list(LABS[lab].CRITERIA)
 
 
 def read_roster(path):
@@ -145,7 +145,7 @@ class ClassGrader:
         self.deadline = deadline
         self.force = force
         self.no_sandbox = no_sandbox
-        self.timeout = timeout or LAB_MODULES[lab].DEFAULT_TIMEOUT
+        self.timeout = timeout or LABS[lab].DEFAULT_TIMEOUT
         self.log = log
         self.lock = threading.Lock()
         self.done = self.running = 0
@@ -344,7 +344,7 @@ class ClassGrader:
             f.write('\n'.join(out) + '\n')
 
 
-def main(argv=None):
+def parser():
     ap = argparse.ArgumentParser(prog='labs/grade-class', description=__doc__.splitlines()[0])
     ap.add_argument('lab', help='lab1, lab2, lab3 or lab4')
     ap.add_argument('--roster', required=True, help='CSV with the columns isu,repo (repo: a path or git URL[@ref])')
@@ -358,23 +358,50 @@ def main(argv=None):
     ap.add_argument('--variants', metavar='FILE', help="grade by this variant table instead of the textbook's "
                     '(labs/grade --variants)')
     ap.add_argument('--task', type=int, help=argparse.SUPPRESS)   # one roster row (a Slurm array task)
-    args = ap.parse_args(argv)
+    return ap
+
+
+def checked_roster(args):
+    """(roster rows, extra column names); RosterError on a bad command line, roster or table,
+    or when no sandbox can be made and --no-sandbox was not given."""
+    if args.lab not in LABS:
+        raise RosterError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LABS))))
+    if args.jobs < 1:
+        raise RosterError('--jobs must be at least 1, got %d' % args.jobs)
+    rows, extra = read_roster(args.roster)
+    if args.variants:
+        try:
+            load_variants(args.lab, os.path.abspath(args.variants))
+        except GradeError as e:
+            raise RosterError(str(e))
+    if not args.no_sandbox:
+        why = sandbox.probe()
+        if why:
+            raise RosterError('no grading sandbox can be made here (%s); give --no-sandbox to grade '
+                              'unsandboxed (trusted code only)' % why)
+    return rows, extra
+
+
+def grade_rows(g, args, valid, checked, out):
+    """Grade the valid rows locally or on Slurm (or the one row of a Slurm array task)."""
+    if args.task is not None:           # one Slurm array task: grade one valid row
+        g.jobs = 1
+        g.grade_row(valid[args.task][1])
+        return
+    g.total = len(valid)
+    print('[grade-class] %s: %d roster rows, %d to grade, backend %s, %d at a time -> %s'
+          % (args.lab, len(checked), len(valid), args.backend, args.jobs, os.path.abspath(out)),
+          file=sys.stderr, flush=True)
+    if args.backend == 'slurm':
+        slurm.run_array(g, args, valid)
+    else:
+        g.run_local(valid, args.jobs)
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
     try:
-        if args.lab not in LAB_MODULES:
-            raise RosterError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LAB_MODULES))))
-        if args.jobs < 1:
-            raise RosterError('--jobs must be at least 1, got %d' % args.jobs)
-        rows, extra = read_roster(args.roster)
-        if args.variants:
-            try:
-                load_variants(args.lab, os.path.abspath(args.variants))
-            except GradeError as e:
-                raise RosterError(str(e))
-        if not args.no_sandbox:
-            why = sandbox.probe()
-            if why:
-                raise RosterError('no grading sandbox can be made here (%s); give --no-sandbox to grade '
-                                  'unsandboxed (trusted code only)' % why)
+        rows, extra = checked_roster(args)
     except RosterError as e:
         print('labs/grade-class: error: %s' % e, file=sys.stderr)
         return 2
@@ -385,19 +412,9 @@ def main(argv=None):
     valid = [(l, r) for l, r, e in checked if e is None]
     course_runtime.become_subreaper()
     try:
-        if args.task is not None:           # one Slurm array task: grade one valid row
-            g.jobs = 1
-            g.grade_row(valid[args.task][1])
+        grade_rows(g, args, valid, checked, out)
+        if args.task is not None:
             return 0
-        g.total = len(valid)
-        print('[grade-class] %s: %d roster rows, %d to grade, backend %s, %d at a time -> %s'
-              % (args.lab, len(checked), len(valid), args.backend, args.jobs, os.path.abspath(out)),
-              file=sys.stderr, flush=True)
-        if args.backend == 'slurm':
-            from grading import slurm
-            slurm.run_array(g, args, valid)
-        else:
-            g.run_local(valid, args.jobs)
     except KeyboardInterrupt:
         print('labs/grade-class: interrupted; rows done are kept, run again to resume', file=sys.stderr)
         g.gradebook(checked, extra)

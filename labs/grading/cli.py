@@ -18,13 +18,12 @@ import time
 import course_runtime
 import yaml
 
-from grading import lab1, lab2, lab3, lab4, sandbox
-from grading.common import (LABS_DIR, VARIANTS_ENV, Criterion, GradeError, load_variants, parse_isu,
-                            read_report, reason)
+from grading import sandbox
+from grading.common import LABS_DIR, VARIANTS_ENV, Criterion, GradeError, parse_isu, read_report, reason
+from grading.labs import LABS, load_variants
 from grading.report import format_report, write_junit
 from grading.workspace import StepFailed, build_overlay, course_env, locate, run_group
 
-LAB_MODULES = {'lab1': lab1, 'lab2': lab2, 'lab3': lab3, 'lab4': lab4}
 BUILD_TIMEOUT = 300.0
 
 
@@ -73,7 +72,7 @@ def run_checker(lab, isu, env, work, timeout, box=None, variants=None):
     With a sandbox `box` the rostest (master and checker) runs in a network namespace of its
     own, and the checker starts the student's nodes inside the sandbox. `variants`: a variant
     table file to use instead of the textbook's."""
-    mod = LAB_MODULES[lab]
+    mod = LABS[lab]
     report = os.path.join(work, 'report.json')
     env = dict(env)
     env['GRADING_REPORT'] = report
@@ -121,7 +120,7 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, h
     build and nodes run in the grading sandbox (grading.sandbox); `hide`: more folders of the
     course tree the sandbox must not see (other submissions); `variants`: a variant table file
     instead of the textbook's."""
-    mod = LAB_MODULES[lab]
+    mod = LABS[lab]
     pkg_c = package_criterion()
     work = tempfile.mkdtemp(prefix='grade-%s-%s-' % (lab, isu))
     ws = os.path.join(work, 'ws')
@@ -172,7 +171,7 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, h
             shutil.rmtree(work, ignore_errors=True)
 
 
-def main(argv=None):
+def parser():
     ap = argparse.ArgumentParser(prog='labs/grade', description=__doc__.splitlines()[0])
     ap.add_argument('lab', help='lab1, lab2, lab3 or lab4')
     ap.add_argument('--isu', required=True, help='your ISU id (digits); its last digit is the variant')
@@ -189,32 +188,62 @@ def main(argv=None):
     ap.add_argument('--hide', action='append', default=[], help=argparse.SUPPRESS)
     ap.add_argument('--logs', help=argparse.SUPPRESS)
     ap.add_argument('--require-sandbox', action='store_true', help=argparse.SUPPRESS)
-    args = ap.parse_args(argv)
+    return ap
+
+
+def sandbox_choice(args):
+    """(sandboxed, self-check note or None) for the command line: a sandbox unless
+    --no-sandbox or none can be made here (then a self-check, unless --require-sandbox)."""
+    sandboxed, note = not args.no_sandbox, None
+    if sandboxed:
+        why = sandbox.probe()
+        if why:
+            if args.require_sandbox:
+                raise GradeError('no grading sandbox can be made here (%s)' % why)
+            print('labs/grade: no sandbox can be made here (%s): grading without one, as a self-check' % why,
+                  file=sys.stderr, flush=True)
+            sandboxed, note = False, 'self-check: graded without a sandbox (%s)' % why
+    if args.no_sandbox:
+        note = 'self-check: graded with --no-sandbox'
+    return sandboxed, note
+
+
+def checked_args(args):
+    """(isu, repo, timeout, variants file or None) of the command line; GradeError on bad input."""
+    if args.lab not in LABS:
+        raise GradeError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LABS))))
+    isu = parse_isu(args.isu)
+    repo = os.path.abspath(args.repo)
+    timeout = args.timeout or LABS[args.lab].DEFAULT_TIMEOUT
+    if timeout <= 0:
+        raise GradeError('--timeout must be positive, got %s' % args.timeout)
+    variants = None
+    if args.variants:
+        variants = os.path.abspath(args.variants)
+        load_variants(args.lab, variants)   # a bad table stops here, before any build
+    return isu, repo, timeout, variants
+
+
+def write_outputs(args, isu, crits, elapsed, note, sandboxed, variants):
+    """The console report, and the JUnit and JSON files where asked."""
+    print(format_report(args.lab, isu, crits, note=note))
+    if args.junit:
+        os.makedirs(os.path.dirname(os.path.abspath(args.junit)), exist_ok=True)
+        write_junit(args.junit, args.lab, isu, crits, elapsed, note=note, variants=variants)
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump({'lab': args.lab, 'isu': isu, 'sandboxed': sandboxed, 'note': note,
+                       'criteria': [c.to_dict() for c in crits]}, f, ensure_ascii=False, indent=1)
+    if args.junit:
+        print('[grade] JUnit report: %s' % os.path.abspath(args.junit))
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
     course_runtime.become_subreaper()   # nodes orphaned by a crashed launch come back to us
     try:
-        if args.lab not in LAB_MODULES:
-            raise GradeError('unknown lab %r: expected one of %s' % (args.lab, ', '.join(sorted(LAB_MODULES))))
-        isu = parse_isu(args.isu)
-        repo = os.path.abspath(args.repo)
-        mod = LAB_MODULES[args.lab]
-        timeout = args.timeout or mod.DEFAULT_TIMEOUT
-        if timeout <= 0:
-            raise GradeError('--timeout must be positive, got %s' % args.timeout)
-        variants = None
-        if args.variants:
-            variants = os.path.abspath(args.variants)
-            load_variants(args.lab, variants)   # a bad table stops here, before any build
-        sandboxed, note = not args.no_sandbox, None
-        if sandboxed:
-            why = sandbox.probe()
-            if why:
-                if args.require_sandbox:
-                    raise GradeError('no grading sandbox can be made here (%s)' % why)
-                print('labs/grade: no sandbox can be made here (%s): grading without one, as a self-check' % why,
-                      file=sys.stderr, flush=True)
-                sandboxed, note = False, 'self-check: graded without a sandbox (%s)' % why
-        if args.no_sandbox:
-            note = 'self-check: graded with --no-sandbox'
+        isu, repo, timeout, variants = checked_args(args)
+        sandboxed, note = sandbox_choice(args)
         t0 = time.monotonic()
         if variants:
             print('[grade] variant table: %s (--variants), not the textbook\'s' % variants, flush=True)
@@ -228,14 +257,5 @@ def main(argv=None):
         return 130
     finally:
         course_runtime.reap_orphans()   # nothing of the student's run outlives the grader
-    print(format_report(args.lab, isu, crits, note=note))
-    if args.junit:
-        os.makedirs(os.path.dirname(os.path.abspath(args.junit)), exist_ok=True)
-        write_junit(args.junit, args.lab, isu, crits, time.monotonic() - t0, note=note, variants=variants)
-    if args.json:
-        with open(args.json, 'w') as f:
-            json.dump({'lab': args.lab, 'isu': isu, 'sandboxed': sandboxed, 'note': note,
-                       'criteria': [c.to_dict() for c in crits]}, f, ensure_ascii=False, indent=1)
-    if args.junit:
-        print('[grade] JUnit report: %s' % os.path.abspath(args.junit))
+    write_outputs(args, isu, crits, time.monotonic() - t0, note, sandboxed, variants)
     return 0 if all(c.passed for c in crits) else 1

@@ -73,10 +73,6 @@ def variant_digit(isu):
 
 
 VARIANTS_ENV = 'GRADING_VARIANTS'   # a variant table given by `labs/grade --variants FILE`
-LAB_FIELDS = {'lab1': ('operation', 'compute'), 'lab2': ('points',),
-              'lab3': ('links', 'arm', 'wheels', 'body'), 'lab4': ('lidar', 'camera', 'body')}
-OPERATIONS = ('+', '-', '*', '/')
-TURTLE_WORLD = 11.088889   # m, the side of turtlesim's field
 
 
 def default_variants_file(lab):
@@ -84,81 +80,61 @@ def default_variants_file(lab):
     return os.path.join(LABS_DIR, lab, 'variants.yaml')
 
 
-def _number(v):
+def is_number(v):
     return isinstance(v, (int, float)) and not isinstance(v, bool)
 
 
-def _numbers(v, n):
-    return isinstance(v, list) and len(v) == n and all(_number(x) for x in v)
+def numbers(v, n):
+    """True when v is a list of n numbers."""
+    return isinstance(v, list) and len(v) == n and all(is_number(x) for x in v)
 
 
-def _check_row(lab, row):
-    """None if a variant row is well-formed for the lab, else what is wrong (a few words)."""
+def check_body(row):
+    """None if the row's body is [L, W, H] in mm, else what is wrong (labs 3 and 4)."""
+    if not numbers(row['body'], 3) or not all(x > 0 for x in row['body']):
+        return 'body %r is not [L, W, H] in mm (3 positive numbers)' % (row['body'],)
+    return None
+
+
+def _check_fields(row, fields):
+    """None if a variant row is a mapping of exactly `fields`, else what is wrong."""
     if not isinstance(row, dict):
-        return 'is not a mapping of %s' % ', '.join(LAB_FIELDS[lab])
-    fields = LAB_FIELDS[lab]
+        return 'is not a mapping of %s' % ', '.join(fields)
     unknown = sorted(str(k) for k in row if k not in fields)
     if unknown:
         return 'unknown field %r (fields: %s)' % (unknown[0], ', '.join(fields))
     missing = [f for f in fields if f not in row]
     if missing:
         return 'field %r missing' % missing[0]
-    if lab == 'lab1':
-        ops = row['operation'] if isinstance(row['operation'], list) else [row['operation']]
-        if not ops or any(o not in OPERATIONS for o in ops) or len(set(ops)) != len(ops):
-            return 'operation %r is not one of %s (or a list of them)' % (row['operation'], ' '.join(OPERATIONS))
-        if row['compute'] not in ('node1', 'node2', 'node3'):
-            return 'compute %r is not node1, node2 or node3' % (row['compute'],)
-    elif lab == 'lab2':
-        pts = row['points']
-        if not isinstance(pts, list) or not pts or not all(_numbers(p, 2) for p in pts):
-            return 'points %r is not a list of [x, y] pairs' % (pts,)
-        out = [p for p in pts if not all(0 < c < TURTLE_WORLD for c in p)]
-        if out:
-            return 'point %r lies outside turtlesim\'s field (0..%.2f m)' % (out[0], TURTLE_WORLD)
-    elif lab == 'lab3':
-        if not isinstance(row['links'], int) or isinstance(row['links'], bool) or row['links'] < 1:
-            return 'links %r is not a positive whole number' % (row['links'],)
-        if not isinstance(row['arm'], str) or not row['arm'] or set(row['arm']) - set('RPC'):
-            return 'arm %r is not a string of R, P, C' % (row['arm'],)
-        if not isinstance(row['wheels'], str) or not row['wheels'] or set(row['wheels']) - set('CS'):
-            return 'wheels %r is not a string of C, S' % (row['wheels'],)
-    if lab in ('lab3', 'lab4'):
-        if not _numbers(row['body'], 3) or not all(x > 0 for x in row['body']):
-            return 'body %r is not [L, W, H] in mm (3 positive numbers)' % (row['body'],)
-    if lab == 'lab4':
-        if not _numbers(row['lidar'], 2) or not 0 <= row['lidar'][0] < row['lidar'][1]:
-            return 'lidar %r is not [range_min, range_max] in m with 0 <= min < max' % (row['lidar'],)
-        cam = row['camera']
-        if not (isinstance(cam, list) and len(cam) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
-                                                                  and x > 0 for x in cam)):
-            return 'camera %r is not [width, height] in pixels' % (cam,)
     return None
 
 
-def load_variants(lab, path=None):
-    """{digit: row} of a lab's variant table: `path`, else the file named by $GRADING_VARIANTS
-    (labs/grade --variants), else the textbook's table. GradeError (one line) on a bad file."""
-    if lab not in LAB_FIELDS:
-        raise GradeError('no variant table for %r' % lab)
-    path = path or os.environ.get(VARIANTS_ENV) or default_variants_file(lab)
-    where = 'variants file %s' % path
+def _read_yaml(path, where):
     try:
         with open(path) as f:
-            data = yaml.safe_load(f)
+            return yaml.safe_load(f)
     except OSError as e:
         raise GradeError('%s: cannot read it (%s)' % (where, e.strerror or e))
     except yaml.YAMLError as e:
         mark = getattr(e, 'problem_mark', None)
         at = ' at line %d' % (mark.line + 1) if mark is not None else ''
         raise GradeError('%s: not YAML%s (%s)' % (where, at, getattr(e, 'problem', None) or str(e).splitlines()[0]))
+
+
+def load_table(lab, fields, check_row, path=None):
+    """{digit: row} of a lab's variant table: `path`, else the file named by $GRADING_VARIANTS
+    (labs/grade --variants), else the textbook's table; every row a mapping of `fields` that
+    `check_row(row)` (None or what is wrong) accepts. GradeError (one line) on a bad file."""
+    path = path or os.environ.get(VARIANTS_ENV) or default_variants_file(lab)
+    where = 'variants file %s' % path
+    data = _read_yaml(path, where)
     if not isinstance(data, dict) or not isinstance(data.get('variants'), dict):
         raise GradeError('%s: no "variants:" mapping of digits 0-9 at the top level' % where)
     table = {}
     for k, row in data['variants'].items():
         if isinstance(k, bool) or not isinstance(k, int) or not 0 <= k <= 9:
             raise GradeError('%s: key %r is not a digit 0-9' % (where, k))
-        why = _check_row(lab, row)
+        why = _check_fields(row, fields) or check_row(row)
         if why:
             raise GradeError('%s: digit %d: %s' % (where, k, why))
         table[k] = row
@@ -167,7 +143,3 @@ def load_variants(lab, path=None):
         raise GradeError('%s: no row for digit%s %s (a %s table needs all ten)' % (
             where, 's' if len(missing) > 1 else '', ', '.join(map(str, missing)), lab))
     return table
-
-
-def variant(lab, isu):
-    return load_variants(lab)[variant_digit(isu)]

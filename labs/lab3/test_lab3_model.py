@@ -5,8 +5,8 @@ import re
 import pytest
 
 from grading import package
-from grading.common import load_variants
 from grading.lab3 import model, rules, rviz
+from grading.labs import load_variants
 from grading.urdf import ModelError, body_size, parse_urdf, root_link
 
 HERE = os.path.dirname(os.path.abspath(__file__))

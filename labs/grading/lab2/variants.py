@@ -1,10 +1,34 @@
 """Lab 2's variant (table 10.1): the points of the ISU's last digit; the ISU's namespaces."""
-from grading.common import variant
+from grading.common import load_table, numbers, variant_digit
+
+FIELDS = ('points',)
+TURTLE_WORLD = 11.088889   # m, the side of turtlesim's field
+
+
+def check_row(row):
+    """None if a row of lab2's table is well-formed, else what is wrong (a few words)."""
+    pts = row['points']
+    if not isinstance(pts, list) or not pts or not all(numbers(p, 2) for p in pts):
+        return 'points %r is not a list of [x, y] pairs' % (pts,)
+    out = [p for p in pts if not all(0 < c < TURTLE_WORLD for c in p)]
+    if out:
+        return 'point %r lies outside turtlesim\'s field (0..%.2f m)' % (out[0], TURTLE_WORLD)
+    return None
+
+
+def load(path=None):
+    """{digit: row} of lab2's variant table (grading.common.load_table)."""
+    return load_table('lab2', FIELDS, check_row, path)
+
+
+def row_of(isu):
+    """The table's row of the ISU's variant (its last digit)."""
+    return load()[variant_digit(isu)]
 
 
 def printed_points(isu):
     """The variant's row as the table prints it, repeated cells included."""
-    return [tuple(float(c) for c in p) for p in variant('lab2', isu)['points']]
+    return [tuple(float(c) for c in p) for p in row_of(isu)['points']]
 
 
 def points(isu):

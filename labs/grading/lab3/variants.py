@@ -1,8 +1,31 @@
 """Lab 3's variant (table 11.1): links, manipulator joints, wheels and body of the ISU's last digit."""
-from grading.common import variant
+from grading.common import check_body, load_table, variant_digit
+
+FIELDS = ('links', 'arm', 'wheels', 'body')
+
+
+def check_row(row):
+    """None if a row of lab3's table is well-formed, else what is wrong (a few words)."""
+    if not isinstance(row['links'], int) or isinstance(row['links'], bool) or row['links'] < 1:
+        return 'links %r is not a positive whole number' % (row['links'],)
+    if not isinstance(row['arm'], str) or not row['arm'] or set(row['arm']) - set('RPC'):
+        return 'arm %r is not a string of R, P, C' % (row['arm'],)
+    if not isinstance(row['wheels'], str) or not row['wheels'] or set(row['wheels']) - set('CS'):
+        return 'wheels %r is not a string of C, S' % (row['wheels'],)
+    return check_body(row)
+
+
+def load(path=None):
+    """{digit: row} of lab3's variant table (grading.common.load_table)."""
+    return load_table('lab3', FIELDS, check_row, path)
+
+
+def row_of(isu):
+    """The table's row of the ISU's variant (its last digit)."""
+    return load()[variant_digit(isu)]
 
 
 def spec(isu):
-    v = variant('lab3', isu)
+    v = row_of(isu)
     return {'links': int(v['links']), 'arm': str(v['arm']), 'wheels': str(v['wheels']),
             'body': [float(x) for x in v['body']]}

@@ -1,13 +1,15 @@
-"""Unit tests of the graders' pure logic (no roscore) and of the CLI's bad-input handling."""
+"""Unit tests of the graders' core (variant tables, report, workspace; no roscore) and of the
+CLI's bad-input handling; each lab's rules are tested beside the lab (labs/labN/test_labN_*.py)."""
 import os
 import subprocess
 import xml.etree.ElementTree as ET
 
 import pytest
 
-from grading.lab2 import variants as lab2
+from grading.common import Criterion, GradeError, reason
 from grading.lab1 import rules as lab1
-from grading.common import Criterion, GradeError, load_variants, reason
+from grading.lab2 import variants as lab2
+from grading.labs import load_variants
 from grading.report import format_report, write_junit
 from grading.workspace import build_error, find_packages
 
