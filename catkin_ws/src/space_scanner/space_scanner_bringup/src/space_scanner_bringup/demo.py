@@ -264,6 +264,51 @@ def printed_web_url(log, port, timeout=60.0):
         return 'http://localhost:%d/?token=... (printed in the log once course_web starts)' % port
 
 
+def report(out, wall_s, elapsed, finished, truth1, quality, slam_ate, amcl_ate, results, pace1,
+           pace2):
+    """Writes OUT/summary.json and prints the demo's summary table; the number of goals reached."""
+    reached = sum(1 for r in results if r[1] == 3)
+    summary = {
+        'exploration_sim_s': round(elapsed, 1), 'exploration_finished': finished,
+        'explored_path_m': round(metrics.path_length(truth1), 2),
+        'map_walls_found': round(quality['walls_found'], 3),
+        'map_false_occupied': round(quality['false_occupied'], 3),
+        'map_known_area_m2': round(quality['known_area'], 1),
+        'slam_ate_rms_m': round(slam_ate[0], 3), 'slam_ate_max_m': round(slam_ate[1], 3),
+        'amcl_ate_rms_m': round(amcl_ate[0], 3), 'amcl_ate_max_m': round(amcl_ate[1], 3),
+        'goals_reached': reached, 'goals': len(results),
+        'goal_times_sim_s': [round(r[2], 1) for r in results],
+        'wall_s': round(wall_s, 1),
+        # achieved real-time factor and the stack's CPU seconds per simulated second
+        'exploration_rtf': round(pace1['rtf'], 3),
+        'exploration_cpu_per_sim_s': round(pace1['cpu_per_sim_s'], 3),
+        'navigation_rtf': round(pace2['rtf'], 3),
+        'navigation_cpu_per_sim_s': round(pace2['cpu_per_sim_s'], 3),
+        'goal_rtf': [round(r[4], 3) for r in results],
+    }
+    with open(os.path.join(out, 'summary.json'), 'w') as f:
+        json.dump(summary, f, indent=1)
+    rows = [
+        ('exploration', '%.0f s sim, %.1f m driven, %s' % (
+            elapsed, summary['explored_path_m'], 'all frontiers done' if finished else 'budget ended')),
+        ('map: walls found', '%.1f %% of the wall cells the robot saw (within one cell)' % (100 * quality['walls_found'])),
+        ('map: false occupied', '%.1f %% of the occupied cells' % (100 * quality['false_occupied'])),
+        ('map: known floor', '%.1f m²' % quality['known_area']),
+        ('SLAM ATE', 'RMS %.3f m, max %.3f m' % slam_ate),
+        ('AMCL ATE', 'RMS %.3f m, max %.3f m' % amcl_ate),
+        ('goals reached', '%d of %d; times %s s sim' % (reached, len(results), summary['goal_times_sim_s'])),
+        ('wall time', '%.0f s' % summary['wall_s']),
+        ('real-time factor', 'exploration %.2fx, navigation %.2fx (simulated s per wall s)'
+         % (pace1['rtf'], pace2['rtf'])),
+        ('stack CPU', 'exploration %.2f, navigation %.2f CPU s per simulated s (of 2 cores)'
+         % (pace1['cpu_per_sim_s'], pace2['cpu_per_sim_s'])),
+    ]
+    print('\n=== main demo summary (%s)' % out)
+    for k, v in rows:
+        print('%-22s %s' % (k, v))
+    return reached
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description='The space scanner maps the office, then navigates on its map.')
     ap.add_argument('--out', default='build/demo', help='output folder (default build/demo)')
@@ -327,45 +372,8 @@ def main(argv=None):
         results, truth2, est2, pace2 = navigate(out, env, display, base + '.yaml',
                                                 args.goal_time, say)
         amcl_ate = metrics.ate(est2, truth2) if est2 else (float('nan'), float('nan'))
-        reached = sum(1 for r in results if r[1] == 3)
-        summary = {
-            'exploration_sim_s': round(elapsed, 1), 'exploration_finished': finished,
-            'explored_path_m': round(metrics.path_length(truth1), 2),
-            'map_walls_found': round(quality['walls_found'], 3),
-            'map_false_occupied': round(quality['false_occupied'], 3),
-            'map_known_area_m2': round(quality['known_area'], 1),
-            'slam_ate_rms_m': round(slam_ate[0], 3), 'slam_ate_max_m': round(slam_ate[1], 3),
-            'amcl_ate_rms_m': round(amcl_ate[0], 3), 'amcl_ate_max_m': round(amcl_ate[1], 3),
-            'goals_reached': reached, 'goals': len(results),
-            'goal_times_sim_s': [round(r[2], 1) for r in results],
-            'wall_s': round(time.monotonic() - t_wall, 1),
-            # achieved real-time factor and the stack's CPU seconds per simulated second
-            'exploration_rtf': round(pace1['rtf'], 3),
-            'exploration_cpu_per_sim_s': round(pace1['cpu_per_sim_s'], 3),
-            'navigation_rtf': round(pace2['rtf'], 3),
-            'navigation_cpu_per_sim_s': round(pace2['cpu_per_sim_s'], 3),
-            'goal_rtf': [round(r[4], 3) for r in results],
-        }
-        with open(os.path.join(out, 'summary.json'), 'w') as f:
-            json.dump(summary, f, indent=1)
-        rows = [
-            ('exploration', '%.0f s sim, %.1f m driven, %s' % (
-                elapsed, summary['explored_path_m'], 'all frontiers done' if finished else 'budget ended')),
-            ('map: walls found', '%.1f %% of the wall cells the robot saw (within one cell)' % (100 * quality['walls_found'])),
-            ('map: false occupied', '%.1f %% of the occupied cells' % (100 * quality['false_occupied'])),
-            ('map: known floor', '%.1f m²' % quality['known_area']),
-            ('SLAM ATE', 'RMS %.3f m, max %.3f m' % slam_ate),
-            ('AMCL ATE', 'RMS %.3f m, max %.3f m' % amcl_ate),
-            ('goals reached', '%d of %d; times %s s sim' % (reached, len(results), summary['goal_times_sim_s'])),
-            ('wall time', '%.0f s' % summary['wall_s']),
-            ('real-time factor', 'exploration %.2fx, navigation %.2fx (simulated s per wall s)'
-             % (pace1['rtf'], pace2['rtf'])),
-            ('stack CPU', 'exploration %.2f, navigation %.2f CPU s per simulated s (of 2 cores)'
-             % (pace1['cpu_per_sim_s'], pace2['cpu_per_sim_s'])),
-        ]
-        print('\n=== main demo summary (%s)' % out)
-        for k, v in rows:
-            print('%-22s %s' % (k, v))
+        reached = report(out, time.monotonic() - t_wall, elapsed, finished, truth1, quality,
+                         slam_ate, amcl_ate, results, pace1, pace2)
         return 0 if finished and reached == len(results) else 1
     except (RuntimeError, OSError) as e:
         say('FAILED: %s' % e)
