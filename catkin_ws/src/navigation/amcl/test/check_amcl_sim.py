@@ -125,6 +125,32 @@ class AmclOfficeTest(unittest.TestCase):
         self.cmd_pub.publish(Twist())
         return converged_at, errors, (dxy, dyaw)
 
+    def nomotion_updates(self, nomotion, at_least):
+        """request_nomotion_update until at least `at_least` updates are published and the error
+        is within STATIC_*, NOMOTION_UPDATES at most: (updates, error m, error rad)."""
+        for n in range(1, NOMOTION_UPDATES + 1):
+            stamp = self.pose.header.stamp
+            nomotion()
+            self.wait(lambda: self.pose.header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
+            dxy, dyaw = self.error()
+            if n >= at_least and dxy < STATIC_XY and dyaw < STATIC_YAW:
+                break
+        return n, dxy, dyaw
+
+    @staticmethod
+    def initial_pose_off(truth):
+        """An /initialpose 0.5 m / 20 deg off the pose `truth`."""
+        init = PoseWithCovarianceStamped()
+        init.header.frame_id = 'map'
+        init.header.stamp = rospy.Time.now()
+        yaw = yaw_of(truth.orientation) + math.radians(20)
+        init.pose.pose.position.x = truth.position.x + 0.35
+        init.pose.pose.position.y = truth.position.y - 0.35
+        init.pose.pose.orientation.z, init.pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
+        init.pose.covariance[0] = init.pose.covariance[7] = 0.25
+        init.pose.covariance[35] = 0.07
+        return init
+
     def test_converges_and_tracks(self):
         map_pub = rospy.Publisher('/map', OccupancyGrid, queue_size=1, latch=True)
         map_pub.publish(load_map(rospy.get_param('~map_file')))
@@ -146,13 +172,7 @@ class AmclOfficeTest(unittest.TestCase):
         self.wait(lambda: rospy.Time.now().to_sec() > t_stop + 1.0, '1 s of sim time after stopping')
         # no-motion updates on the stopped robot (at least two; the filter is random: more while
         # it is still outside the at-rest tolerance, up to NOMOTION_UPDATES)
-        for rest_updates in range(1, NOMOTION_UPDATES + 1):
-            stamp = self.pose.header.stamp
-            nomotion()
-            self.wait(lambda: self.pose.header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
-            sxy, syaw = self.error()
-            if rest_updates >= 2 and sxy < STATIC_XY and syaw < STATIC_YAW:
-                break
+        rest_updates, sxy, syaw = self.nomotion_updates(nomotion, 2)
         rospy.loginfo('amcl at rest within tolerance after %d no-motion updates', rest_updates)
         rospy.loginfo('amcl converged after %s s of sim time; tracking max error %.3f m %.3f rad',
                       converged_at, max(e[0] for e in errors), max(e[1] for e in errors))
@@ -172,16 +192,7 @@ class AmclOfficeTest(unittest.TestCase):
         self.assertEqual(cloud.header.frame_id, 'map')
         self.assertGreaterEqual(len(cloud.poses), 100)
         # initialpose 0.5 m / 20 deg off the (now stationary) robot, then no-motion updates
-        truth = self.get(model_name='robot').pose
-        init = PoseWithCovarianceStamped()
-        init.header.frame_id = 'map'
-        init.header.stamp = rospy.Time.now()
-        yaw = yaw_of(truth.orientation) + math.radians(20)
-        init.pose.pose.position.x = truth.position.x + 0.35
-        init.pose.pose.position.y = truth.position.y - 0.35
-        init.pose.pose.orientation.z, init.pose.pose.orientation.w = math.sin(yaw / 2), math.cos(yaw / 2)
-        init.pose.covariance[0] = init.pose.covariance[7] = 0.25
-        init.pose.covariance[35] = 0.07
+        init = self.initial_pose_off(self.get(model_name='robot').pose)
         init_pub = rospy.Publisher('/initialpose', PoseWithCovarianceStamped, queue_size=1, latch=True)
         self.wait(lambda: init_pub.get_num_connections() > 0, 'amcl subscribing /initialpose')
         init_pub.publish(init)
@@ -194,13 +205,7 @@ class AmclOfficeTest(unittest.TestCase):
         # most of the 0.5 m / 20 deg gone (within the original amcl tests' 0.25 m) - and then,
         # as a user does after a 2D Pose Estimate, drives: the diffusion of motion brings the
         # filter within the convergence tolerance, judged as at the start.
-        for n in range(1, NOMOTION_UPDATES + 1):
-            stamp = self.pose.header.stamp
-            nomotion()
-            self.wait(lambda: self.pose.header.stamp > stamp, 'an /amcl_pose after request_nomotion_update')
-            dxy, dyaw = self.error()
-            if n >= 3 and dxy < STATIC_XY and dyaw < STATIC_YAW:
-                break
+        n, dxy, dyaw = self.nomotion_updates(nomotion, 3)
         rospy.loginfo('amcl recovered from initialpose 0.5 m / 20 deg off after %d no-motion updates: '
                       'error %.3f m %.3f rad', n, dxy, dyaw)
         self.assertLess(dxy, RECOVER_XY, 'position error after initialpose 0.5 m off + %d no-motion updates' % n)
