@@ -57,96 +57,108 @@ def without_token(path):
     return urlunsplit(('', '', parts.path or '/', urlencode(query), ''))
 
 
+class Handler(BaseHTTPRequestHandler):
+    """course_web's requests; make_handler binds the class attributes below."""
+    www_root = find_package = config_body = log = token = auth_issuer = None
+    routes = {}
+    server_version = 'course_web/0.1'
+
+    def do_GET(self):
+        self._answer(send_body=True)
+
+    def do_HEAD(self):
+        self._answer(send_body=False)
+
+    def _token_state(self):
+        """'ok', 'query' (right token in the URL: set the cookie) or None."""
+        if self.token is None:
+            return 'ok'
+        query = dict(parse_qsl(urlsplit(self.path).query, keep_blank_values=True))
+        if 'token' in query:
+            return 'query' if token_matches(query['token'], self.token) else None
+        header = self.headers.get('Authorization') or ''
+        if header.lower().startswith('token '):
+            return 'ok' if token_matches(header[6:].strip(), self.token) else None
+        try:
+            jar = SimpleCookie(self.headers.get('Cookie') or '')
+        except CookieError:
+            return None
+        cookie = cookie_name(self.server.server_address[1])
+        return 'ok' if cookie in jar and token_matches(jar[cookie].value, self.token) else None
+
+    def _answer(self, send_body):
+        state = self._token_state()
+        if state is None:
+            return self._send(403, 'text/plain', (
+                '403 Forbidden: this page needs its token. Open the URL that '
+                'course_web_server printed when it started (http://localhost:%d/?token=...)'
+                '\n' % self.server.server_address[1]).encode(), send_body)
+        if state == 'query':
+            return self._redirect_with_cookie()
+        path_only = self.path.split('?')[0]
+        if path_only == '/config.json':
+            return self._send(200, 'application/json', self.config_body, send_body)
+        if path_only == '/rosauth':
+            return self._rosauth(send_body)
+        if path_only in self.routes:
+            status, ctype, body = self.routes[path_only](urlsplit(self.path).query)
+            return self._send(status, ctype, body, send_body)
+        try:
+            path = resolve(self.path, self.www_root, self.find_package)
+            with open(path, 'rb') as f:
+                body = f.read()
+        except ResolveError as e:
+            return self._send(e.status, 'text/plain', (e.reason + '\n').encode(), send_body)
+        except OSError as e:
+            return self._send(404, 'text/plain', ('%s\n' % e.strerror).encode(), send_body)
+        self._send(200, content_type(path), body, send_body)
+
+    def _redirect_with_cookie(self):
+        """The right token in the URL: set it as the cookie and redirect to the URL without it."""
+        self.send_response(302)
+        self.send_header('Set-Cookie', '%s=%s; Path=/; HttpOnly; SameSite=Lax'
+                         % (cookie_name(self.server.server_address[1]), self.token))
+        self.send_header('Location', without_token(self.path))
+        self.send_header('Content-Length', '0')
+        self.send_header('Cache-Control', 'no-store')
+        self.end_headers()
+
+    def _rosauth(self, send_body):
+        if self.auth_issuer is None:
+            return self._send(404, 'text/plain', b'no rosauth secret here\n', send_body)
+        host = (self.headers.get('Host') or '').rsplit(':', 1)[0].strip('[]')
+        body = json.dumps(self.auth_issuer(self.client_address[0], host)).encode()
+        return self._send(200, 'application/json', body, send_body, cache='no-store')
+
+    def _send(self, status, ctype, body, send_body, cache='no-cache'):
+        self.send_response(status)
+        self.send_header('Content-Type', ctype)
+        self.send_header('Content-Length', str(len(body)))
+        self.send_header('Cache-Control', cache)
+        if self.token is None:       # with a token, no other site's script may read answers
+            self.send_header('Access-Control-Allow-Origin', '*')
+        self.end_headers()
+        if send_body:
+            self.wfile.write(body)
+
+    def log_message(self, fmt, *args):  # per-request lines go to DEBUG, not stderr
+        if self.log:                    # (never the token: it is cut out of the line)
+            text = fmt % args
+            self.log(text.replace(self.token, '<token>') if self.token else text)
+
+
 def make_handler(www_root, find_package, config, log=None, token=None, auth_issuer=None,
                  routes=None):
     """A request handler class bound to the page's root, a package lookup and the config.
     token: None = no token needed. auth_issuer(client ip, server host) -> the rosauth `auth`
     message for /rosauth (None: /rosauth is 404). routes: {path: handler(query string) ->
     (status, content type, body)} answered behind the same token (sim_library's Insert list)."""
-    routes = dict(routes or {})
-    config_body = json.dumps(config).encode()
+    return type('Handler', (Handler,), {
+        'www_root': www_root, 'find_package': staticmethod(find_package),
+        'config_body': json.dumps(config).encode(), 'log': staticmethod(log) if log else None,
+        'token': token, 'auth_issuer': staticmethod(auth_issuer) if auth_issuer else None,
+        'routes': dict(routes or {})})
 
-    class Handler(BaseHTTPRequestHandler):
-        server_version = 'course_web/0.1'
-
-        def do_GET(self):
-            self._answer(send_body=True)
-
-        def do_HEAD(self):
-            self._answer(send_body=False)
-
-        def _token_state(self):
-            """'ok', 'query' (right token in the URL: set the cookie) or None."""
-            if token is None:
-                return 'ok'
-            query = dict(parse_qsl(urlsplit(self.path).query, keep_blank_values=True))
-            if 'token' in query:
-                return 'query' if token_matches(query['token'], token) else None
-            header = self.headers.get('Authorization') or ''
-            if header.lower().startswith('token '):
-                return 'ok' if token_matches(header[6:].strip(), token) else None
-            try:
-                jar = SimpleCookie(self.headers.get('Cookie') or '')
-            except CookieError:
-                return None
-            cookie = cookie_name(self.server.server_address[1])
-            return 'ok' if cookie in jar and token_matches(jar[cookie].value, token) else None
-
-        def _answer(self, send_body):
-            state = self._token_state()
-            if state is None:
-                return self._send(403, 'text/plain', (
-                    '403 Forbidden: this page needs its token. Open the URL that '
-                    'course_web_server printed when it started (http://localhost:%d/?token=...)'
-                    '\n' % self.server.server_address[1]).encode(), send_body)
-            if state == 'query':
-                self.send_response(302)
-                self.send_header('Set-Cookie', '%s=%s; Path=/; HttpOnly; SameSite=Lax'
-                                 % (cookie_name(self.server.server_address[1]), token))
-                self.send_header('Location', without_token(self.path))
-                self.send_header('Content-Length', '0')
-                self.send_header('Cache-Control', 'no-store')
-                self.end_headers()
-                return
-            path_only = self.path.split('?')[0]
-            if path_only == '/config.json':
-                return self._send(200, 'application/json', config_body, send_body)
-            if path_only == '/rosauth':
-                if auth_issuer is None:
-                    return self._send(404, 'text/plain', b'no rosauth secret here\n', send_body)
-                host = (self.headers.get('Host') or '').rsplit(':', 1)[0].strip('[]')
-                body = json.dumps(auth_issuer(self.client_address[0], host)).encode()
-                return self._send(200, 'application/json', body, send_body, cache='no-store')
-            if path_only in routes:
-                status, ctype, body = routes[path_only](urlsplit(self.path).query)
-                return self._send(status, ctype, body, send_body)
-            try:
-                path = resolve(self.path, www_root, find_package)
-                with open(path, 'rb') as f:
-                    body = f.read()
-            except ResolveError as e:
-                return self._send(e.status, 'text/plain', (e.reason + '\n').encode(), send_body)
-            except OSError as e:
-                return self._send(404, 'text/plain', ('%s\n' % e.strerror).encode(), send_body)
-            self._send(200, content_type(path), body, send_body)
-
-        def _send(self, status, ctype, body, send_body, cache='no-cache'):
-            self.send_response(status)
-            self.send_header('Content-Type', ctype)
-            self.send_header('Content-Length', str(len(body)))
-            self.send_header('Cache-Control', cache)
-            if token is None:       # with a token, no other site's script may read answers
-                self.send_header('Access-Control-Allow-Origin', '*')
-            self.end_headers()
-            if send_body:
-                self.wfile.write(body)
-
-        def log_message(self, fmt, *args):  # per-request lines go to DEBUG, not stderr
-            if log:                         # (never the token: it is cut out of the line)
-                text = fmt % args
-                log(text.replace(token, '<token>') if token else text)
-
-    return Handler
 
 
 def start_server(address, port, www_root, find_package, config, log=None, token=None,
