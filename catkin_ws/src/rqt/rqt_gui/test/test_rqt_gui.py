@@ -70,6 +70,13 @@ def test_rqt_gui_plugins_publisher_plot_perspective(roscore, screen, tmp_path):
         for p in reversed(procs):
             p.stop()
 
+    check_menu_and_broken_plugins(menu, broken)
+    check_publisher(publishing, echo_text)
+    check_plot(plotted, png)
+    check_perspective(perspective, reloaded, plotted['docks'])
+
+
+def check_menu_and_broken_plugins(menu, broken):
     # Plugins menu: groups as submenus, the tutorial's label, the test packages found
     assert ['Examples', 'My first Python Plugin', 'rqt_mypkg/My Plugin'] in menu['menu']
     assert ['Topics', 'Message Publisher', 'rqt_publisher/Publisher'] in menu['menu']
@@ -88,6 +95,9 @@ def test_rqt_gui_plugins_publisher_plot_perspective(roscore, screen, tmp_path):
     assert any('could not find class "NoSuchClass" in module "rqt_broken.broken"' in e
                for e in broken['errors']), broken['errors']
     assert 'HalfUi' not in json.dumps(broken['docks'])          # the half-built widget is gone
+
+
+def check_publisher(publishing, echo_text):
     # publisher: an unknown type is one status line; the Float64 rows; rostopic echo got i * 0.5
     assert publishing['bad_type_id'] is None
     assert 'could not find type "no_such_pkg/NoSuchType"' in publishing['status']
@@ -96,6 +106,9 @@ def test_rqt_gui_plugins_publisher_plot_perspective(roscore, screen, tmp_path):
     values = [float(l.split(':')[1]) for l in echo_text.splitlines() if l.startswith('data:')]
     assert len(values) >= 2 and all(v > 0 and (v * 2).is_integer() for v in values), echo_text
     assert values == sorted(values) and values[1] - values[0] == 0.5, values
+
+
+def check_plot(plotted, png):
     # Plot and Message Publisher docked together (both visible, side by side or stacked)
     assert plotted['points'] >= 20 and plotted['last'] > 0
     d = plotted['docks']
@@ -109,6 +122,9 @@ def test_rqt_gui_plugins_publisher_plot_perspective(roscore, screen, tmp_path):
     rows = np.nonzero(mask.any(axis=1))[0]
     assert len(cols) > 50 and len(rows) > 20, \
         'the curve covers %d columns and %d rows of the plot' % (len(cols), len(rows))
+
+
+def check_perspective(perspective, reloaded, d):
     # the perspective file and its reload
     data = json.load(open(perspective))
     assert 'mainwindow' in data['groups'] and 'pluginmanager' in data['groups']
