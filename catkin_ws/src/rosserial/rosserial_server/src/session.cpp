@@ -24,6 +24,7 @@ namespace
 {
 const double TOPIC_REQUEST_PERIOD = 1.0;   // s between topic requests until the device answers
 const double SERVICE_TIMEOUT = 5.0;        // s a ROS caller waits for the device's response
+const double REQUIRE_CHECK_DELAY = 1.0;    // s after a topic request: ~require checked
 
 template <typename M>
 M decode(const std::vector<uint8_t>& payload)
@@ -196,13 +197,72 @@ void Session::requestTopics()
   ROS_INFO("Requesting topics...");
   send(rosserial_msgs::TopicInfo::ID_PUBLISHER, std::vector<uint8_t>());
   last_request_ = Clock::now();
+  require_check_pending_ = true;
+}
+
+// The topic names of `param_name` (a list of strings), resolved; false with an error line when
+// it is not such a list. A missing parameter is an empty list.
+static bool requiredTopics(const ros::NodeHandle& nh, const std::string& param_name,
+                           std::vector<std::string>& out)
+{
+  XmlRpc::XmlRpcValue list;
+  if (!ros::param::get(param_name, list))
+    return true;
+  if (list.getType() != XmlRpc::XmlRpcValue::TypeArray)
+  {
+    ROS_ERROR_ONCE("%s must be a list of topic names", param_name.c_str());
+    return false;
+  }
+  for (int i = 0; i < list.size(); ++i)
+  {
+    if (list[i].getType() != XmlRpc::XmlRpcValue::TypeString)
+    {
+      ROS_ERROR_ONCE("%s must be a list of topic names (item %d is not a string)",
+                     param_name.c_str(), i);
+      return false;
+    }
+    out.push_back(nh.resolveName(static_cast<std::string>(list[i])));
+  }
+  return true;
+}
+
+template <typename M>
+static bool allPresent(const ros::NodeHandle& nh, const std::vector<std::string>& required,
+                       const M& entries)
+{
+  for (const std::string& topic : required)
+  {
+    bool found = false;
+    for (const auto& kv : entries)
+      found = found || nh.resolveName(kv.first) == topic;
+    if (!found)
+      return false;
+  }
+  return true;
+}
+
+void Session::checkRequiredTopics()
+{
+  require_check_pending_ = false;
+  if (!ros::param::has("~require"))
+    return;
+  std::vector<std::string> pubs, subs;
+  if (!requiredTopics(nh_, "~require/publishers", pubs) ||
+      !requiredTopics(nh_, "~require/subscribers", subs))
+    return;
+  if (!allPresent(nh_, pubs, publishers_) || !allPresent(nh_, subs, subscribers_))
+  {
+    ROS_WARN("Connected client failed to establish the publishers and subscribers dictated by "
+             "require parameter. Re-requesting topics.");
+    requestTopics();
+  }
 }
 
 void Session::run(const std::function<bool()>& keep_going)
 {
   last_rx_ = Clock::now();
   requestTopics();
-  std::vector<uint8_t> buf(1024);
+  std::vector<uint8_t> buf(65536);   // a whole UDP datagram (udp_socket_node) fits
   while (keep_going())
   {
     int n = stream_->read(buf.data(), buf.size(), 100);
@@ -247,6 +307,8 @@ void Session::run(const std::function<bool()>& keep_going)
     }
     if (!synced_ && since(last_request_) > TOPIC_REQUEST_PERIOD)
       requestTopics();
+    if (require_check_pending_ && since(last_request_) > REQUIRE_CHECK_DELAY)
+      checkRequiredTopics();
     if (synced_ && since(last_rx_) > sync_timeout_)
     {
       ROS_ERROR("Lost sync with device, restarting...");

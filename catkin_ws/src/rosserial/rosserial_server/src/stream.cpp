@@ -39,12 +39,13 @@ int FdStream::read(uint8_t* buf, size_t size, int timeout_ms)
     return errno == EINTR ? 0 : -1;
   if (r == 0)
     return 0;
-  if (p.revents & POLLIN)
+  if (p.revents & (POLLIN | POLLERR))
   {
     ssize_t n = ::read(fd, buf, size);
     if (n > 0)
       return (int)n;
-    if (n < 0 && (errno == EAGAIN || errno == EINTR))
+    // ECONNREFUSED: a connected UDP socket's client is not listening (yet): nothing to read
+    if (n < 0 && (errno == EAGAIN || errno == EINTR || errno == ECONNREFUSED))
       return 0;
     return -1;      // 0: end of stream; EIO: the pty's other side closed
   }
@@ -71,6 +72,8 @@ bool FdStream::write(const uint8_t* data, size_t size)
     }
     if (n < 0 && errno == EINTR)
       continue;
+    if (n < 0 && errno == ECONNREFUSED)
+      return true;    // a UDP client not listening (yet): the datagram is lost, as UDP loses it
     if (n < 0 && errno == EAGAIN)
     {
       pollfd p{fd_, POLLOUT, 0};

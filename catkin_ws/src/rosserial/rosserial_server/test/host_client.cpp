@@ -3,6 +3,8 @@
 //   host_client PORT [LOOPS]       a TCP client of socket_node on 127.0.0.1:PORT
 //   host_client /path/link [LOOPS]  a pty whose slave is symlinked at /path/link, for
 //                                   serial_node (as the original rosserial_test's fixture)
+//   host_client udp:SERVER:CLIENT [LOOPS]  UDP from 127.0.0.1:CLIENT to udp_socket_node on
+//                                   127.0.0.1:SERVER (one frame per datagram)
 // LOOPS: exit after that many 10 ms loops (closing the connection); default: run until killed.
 // chatter (std_msgs/String) every 100 ms; words -> echo; serves test_srv (std_srvs/Trigger);
 // calls ros_srv (std_srvs/Trigger) once synced when CALL_ROS_SRV is set; reads parameters int_value, float_value,
@@ -15,6 +17,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -44,6 +47,11 @@ public:
       link_ = port;
       return;
     }
+    if (strncmp(port, "udp:", 4) == 0)
+    {
+      initUdp(atoi(port + 4), atoi(strchr(port + 4, ':') + 1));
+      return;
+    }
     fd_ = socket(AF_INET, SOCK_STREAM, 0);
     sockaddr_in a;
     memset(&a, 0, sizeof(a));
@@ -60,10 +68,40 @@ public:
     setsockopt(fd_, IPPROTO_TCP, TCP_NODELAY, &one, sizeof(one));
     fcntl(fd_, F_SETFL, O_NONBLOCK);
   }
+  void initUdp(int server_port, int client_port)
+  {
+    udp_ = true;
+    fd_ = socket(AF_INET, SOCK_DGRAM, 0);
+    sockaddr_in a;
+    memset(&a, 0, sizeof(a));
+    a.sin_family = AF_INET;
+    inet_pton(AF_INET, "127.0.0.1", &a.sin_addr);
+    a.sin_port = htons(client_port);
+    if (bind(fd_, (sockaddr*)&a, sizeof(a)) != 0)
+    {
+      perror("bind");
+      exit(1);
+    }
+    a.sin_port = htons(server_port);
+    connect(fd_, (sockaddr*)&a, sizeof(a));
+    fcntl(fd_, F_SETFL, O_NONBLOCK);
+  }
   int read()
   {
-    unsigned char c;
-    return ::read(fd_, &c, 1) == 1 ? c : -1;
+    if (!udp_)
+    {
+      unsigned char c;
+      return ::read(fd_, &c, 1) == 1 ? c : -1;
+    }
+    if (pos_ == len_)
+    {
+      ssize_t n = ::recv(fd_, dgram_, sizeof(dgram_), 0);
+      if (n <= 0)
+        return -1;
+      pos_ = 0;
+      len_ = (size_t)n;
+    }
+    return dgram_[pos_++];
   }
   void write(uint8_t* data, int length)
   {
@@ -73,6 +111,8 @@ public:
       ssize_t n = ::write(fd_, data + done, length - done);
       if (n > 0)
         done += n;
+      else if (udp_ && errno == ECONNREFUSED)
+        return;     // the server is not there yet: the datagram is lost
       else
         usleep(1000);
     }
@@ -94,6 +134,9 @@ public:
 private:
   int fd_ = -1;
   std::string link_;
+  bool udp_ = false;
+  unsigned char dgram_[65536];
+  size_t pos_ = 0, len_ = 0;
 };
 
 typedef ros::NodeHandle_<TcpHardware> NodeHandle;

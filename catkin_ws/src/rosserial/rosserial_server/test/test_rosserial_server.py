@@ -99,6 +99,82 @@ def test_socket_node_with_a_tcp_client(core, host_client, tmp_path):
         server.stop()
 
 
+def test_udp_socket_node_with_a_udp_client(core, host_client, tmp_path):
+    """udp_socket_node (udp_socket.launch's node, with its own server port so both ends fit on
+    one host): the client is started after the server, which keeps asking for topics while
+    nobody listens; publish, subscribe and a device service over datagrams."""
+    server_port, client_port = free_port(), free_port()
+    server = Proc(['rosrun', 'rosserial_server', 'udp_socket_node',
+                   '_server_port:=%d' % server_port, '_client_port:=%d' % client_port,
+                   '_client_addr:=127.0.0.1'], env=core.env, log=str(tmp_path / 'server.log'))
+    client = None
+    try:
+        wait_for(lambda: 'Requesting topics' in server.output(), 90,
+                 what='udp_socket_node asking for topics:\n' + server.output()[-2000:])
+        client = Proc([host_client, 'udp:%d:%d' % (server_port, client_port)], env=core.env,
+                      log=str(tmp_path / 'client.log'))
+        wait_for(lambda: 'Setup publisher on chatter [std_msgs/String]' in server.output(), 90,
+                 what='negotiation over UDP:\n' + server.output()[-3000:])
+        assert 'data: "from-rosserial-client"' in echo(core, '/chatter')
+        pub = Proc(['rostopic', 'pub', '-r', '2', '/words', 'std_msgs/String', 'data: hi udp'],
+                   env=core.env)
+        try:
+            assert 'data: "echo: hi udp"' in echo(core, '/echo')
+        finally:
+            pub.stop()
+        p = subprocess.run(['rosservice', 'call', '/test_srv'], env=core.env, capture_output=True,
+                           text=True, timeout=90)
+        assert p.returncode == 0, p.stderr
+        assert 'served by the client' in p.stdout, p.stdout
+        assert client.alive() and server.alive()
+    finally:
+        if client is not None:
+            client.stop()
+        server.stop()
+
+
+def test_require_re_requests_topics_until_the_device_has_them(core, host_client, tmp_path):
+    """~require/publishers and ~require/subscribers: a device without one of them is asked for
+    its topics again (the original's warning), one with all of them is left alone."""
+    warning = ('Connected client failed to establish the publishers and subscribers dictated '
+               'by require parameter. Re-requesting topics.')
+    for name, pubs, ok in (('missing', ['chatter', 'no_such_topic'], False),
+                           ('present', ['chatter', '/echo'], True)):
+        subprocess.run(['rosparam', 'set', '/rosserial_server/require',
+                        '{publishers: %s, subscribers: [words]}' % pubs], env=core.env,
+                       check=True, timeout=60)
+        port = free_port()
+        server = Proc(['rosrun', 'rosserial_server', 'socket_node', '_port:=%d' % port,
+                       '__name:=rosserial_server'], env=core.env,
+                      log=str(tmp_path / ('server-%s.log' % name)))
+        client = Proc([host_client, str(port)], env=core.env,
+                      log=str(tmp_path / ('client-%s.log' % name)))
+        try:
+            wait_for(lambda: server.output().count('Setup publisher on chatter') >= 2 if not ok
+                     else 'Setup subscriber on words' in server.output(), 90,
+                     what='negotiation (%s):\n%s' % (name, server.output()[-3000:]))
+            if ok:
+                # 20 messages of the device's 10 Hz chatter after negotiation: 2 s of its
+                # output, past the check 1 s after the topic request
+                p = subprocess.run(['rostopic', 'echo', '-n', '20', '/chatter'], env=core.env,
+                                   capture_output=True, text=True, timeout=120)
+                assert p.stdout.count('from-rosserial-client') == 20, p.stderr
+                assert warning not in server.output(), server.output()[-3000:]
+            else:
+                assert warning in server.output(), server.output()[-3000:]
+        finally:
+            client.stop()
+            server.stop()
+
+
+def test_udp_socket_node_refuses_a_bad_address(core, tmp_path):
+    p = subprocess.run(['rosrun', 'rosserial_server', 'udp_socket_node', '_client_addr:=nowhere',
+                        '__name:=udp_bad'], env=core.env, capture_output=True, text=True,
+                       timeout=90)
+    assert p.returncode == 1
+    assert "~client_addr: 'nowhere' is not an IPv4 address" in p.stdout + p.stderr
+
+
 def test_serial_node_with_sketches_in_the_simulator(core, tmp_path):
     sys.path.insert(0, os.path.join(REPO, 'firmware', 'hil'))
     import harness

@@ -47,6 +47,9 @@ private:
 
   void handle(uint16_t topic_id, const std::vector<uint8_t>& payload);
   void requestTopics();
+  // ~require/publishers and ~require/subscribers (topic name lists) checked 1 s after each
+  // topic request: a device missing one is asked for its topics again (the original's rule)
+  void checkRequiredTopics();
   void send(uint16_t topic_id, const std::vector<uint8_t>& payload);
 
   void setupPublisher(const rosserial_msgs::TopicInfo& info);
@@ -62,6 +65,7 @@ private:
   FrameParser parser_;
   double sync_timeout_ = 15.0;
   bool synced_ = false;
+  bool require_check_pending_ = false;
   Clock::time_point last_rx_, last_request_;
   int out_buffer_ = -1, in_buffer_ = -1;
 

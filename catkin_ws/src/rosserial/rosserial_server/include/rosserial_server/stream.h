@@ -1,5 +1,5 @@
 // rosserial_server (re-implementation): the byte stream a session talks over: a serial port
-// (or pty) or an accepted TCP socket, both file descriptors.
+// (or pty), an accepted TCP socket or a connected UDP socket, all file descriptors.
 #ifndef ROSSERIAL_SERVER_STREAM_H
 #define ROSSERIAL_SERVER_STREAM_H
 
