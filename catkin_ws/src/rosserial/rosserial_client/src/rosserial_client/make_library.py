@@ -141,7 +141,15 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
         if base == 'Header':
             base = 'std_msgs/Header'
         fields.append(Field(name, base, is_array, array_len, prim))
+    lines = (_members(cls_name, fields, spec) + _constructor(cls_name, fields) + _serialize(fields)
+             + _deserialize(fields) + _serialized_length(fields))
+    lines += ['', '    virtual const char * getType() override { return %s; };' % type_string,
+              '    virtual const char * getMD5() override { return "%s"; };' % md5,
+              '', '  };']
+    return lines, fields
 
+
+def _members(cls_name, fields, spec):
     lines = ['  class %s : public ros::Msg' % cls_name, '  {', '    public:']
     for f in fields:
         if f.is_array and f.array_len is None:
@@ -156,8 +164,11 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
                       '      _%s_type %s;' % (f.name, f.name)]
     for c in spec.constants:
         lines.append('      ' + _constant(c))
+    return lines
 
-    # constructor
+
+def _constructor(cls_name, fields):
+    lines = []
     inits = []
     for f in fields:
         if f.is_array and f.array_len is None:
@@ -178,9 +189,11 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
         lines.append('    %s()' % cls_name)
         lines.append('    {')
         lines.append('    }')
+    return lines
 
-    # serialize
-    lines += ['', '    virtual int serialize(unsigned char *outbuffer) const override',
+
+def _serialize(fields):
+    lines = ['', '    virtual int serialize(unsigned char *outbuffer) const override',
               '    {', '      int offset = 0;']
     for f in fields:
         if f.is_array and f.array_len is None:
@@ -195,10 +208,11 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
             lines.append('      }')
         else:
             lines += _indent(_ser_value('this->%s' % f.name, f, None), 6)
-    lines += ['      return offset;', '    }']
+    return lines + ['      return offset;', '    }']
 
-    # deserialize
-    lines += ['', '    virtual int deserialize(unsigned char *inbuffer) override',
+
+def _deserialize(fields):
+    lines = ['', '    virtual int deserialize(unsigned char *inbuffer) override',
               '    {', '      int offset = 0;']
     for f in fields:
         if f.is_array and f.array_len is None:
@@ -220,10 +234,11 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
             lines.append('      }')
         else:
             lines += _indent(_deser_value('this->%s' % f.name, f), 6)
-    lines += ['      return offset;', '    }']
+    return lines + ['      return offset;', '    }']
 
-    # serializedLength
-    lines += ['', '    virtual int serializedLength() const override', '    {',
+
+def _serialized_length(fields):
+    lines = ['', '    virtual int serializedLength() const override', '    {',
               '      int length = 0;']
     for f in fields:
         if f.is_array:
@@ -237,12 +252,7 @@ def message_class(cls_name, full_type, md5, spec, prim, type_string):
                              % (n, _len_value('this->%s[i]' % f.name, f)))
         else:
             lines.append('      length += %s;' % _len_value('this->%s' % f.name, f))
-    lines += ['      return length;', '    }']
-
-    lines += ['', '    virtual const char * getType() override { return %s; };' % type_string,
-              '    virtual const char * getMD5() override { return "%s"; };' % md5,
-              '', '  };']
-    return lines, fields
+    return lines + ['      return length;', '    }']
 
 
 def _file(pkg, name, includes, body):
