@@ -9,6 +9,19 @@ NO_DISPLAY = ('gzclient: no display (DISPLAY is not set), the window cannot open
               'simulator runs on without it')
 
 
+WINDOW_NICE = 10
+
+
+def yield_cpu():
+    """The window runs at a lower CPU priority than the simulator (nice +10): on a machine with
+    few cores and software OpenGL (llvmpipe renders on every core) the view then takes the time
+    the simulation leaves, instead of slowing it."""
+    try:
+        os.nice(WINDOW_NICE)
+    except OSError:
+        pass
+
+
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
     if not os.environ.get('DISPLAY') and os.environ.get('QT_QPA_PLATFORM', '') != 'offscreen':
@@ -23,6 +36,7 @@ def main(argv=None):
     qt_args = [a for a in argv if ':=' not in a and a not in ('--verbose', '-g')]
     app = QtWidgets.QApplication([sys.argv[0]] + qt_args)
     app.setApplicationName('Gazebo')
+    yield_cpu()
     rospy.init_node('gzclient', argv=[sys.argv[0]] + ros_args, anonymous=True,
                     disable_signals=True)
     win = MainWindow(SimClient('/gazebo'))
