@@ -5,9 +5,13 @@ For each launch: roslaunch on a private roscore; once the robot's first sensor m
 does in Gazebo; the launch and world files stay as shipped); the robot drives; over the measured
 window: sim seconds per wall second, per process CPU (every node of the launch, sim_node's
 threads, the simulation thread's time off CPU), /clock and /tf publications, sensor rates by
-header stamps. Then the bare C ODE loop (bare_loop.c) steps the same world and robot (the
-launch's robot_description) in this process (best of three runs), and the report gives ours /
-bare C, by wall time and per CPU second (the load-independent figure on a shared machine).
+header stamps. The window is cut into SEGMENTS parts; after each, the simulation is paused
+(/gazebo/pause_physics: the launch's nodes idle) and the bare C ODE loop (bare_loop.c) steps
+the same world and robot (the launch's robot_description) for a share of --bare-steps, in a
+process and session of its own as the launch's nodes have (bare_worker.py), then the
+simulation resumes: ours and bare C are measured interleaved,
+under the same load of a shared machine, and the report gives ours / bare C by wall time and
+per CPU second (the load-independent figure).
 With paced=True (sim_rtf --launch --paced) the world keeps its shipped rate (1.0x real time
 for the course's worlds), as `make demo` runs it: the report gives the achieved real-time factor
 and the CPU seconds each process needs per simulated second (what 2 cores must supply)."""
@@ -63,6 +67,7 @@ LAUNCHES = {
 }
 
 TICK = os.sysconf('SC_CLK_TCK')
+SEGMENTS = 4        # measured parts of the window, each followed by a bare C run
 
 
 def _stat(path):
@@ -160,8 +165,36 @@ def wait_first(topic, typ, timeout):
     rospy.wait_for_message(topic, get_message_class(typ), timeout=timeout)
 
 
-def measure_launch(name, seconds, warmup, tmp, paced=False):
-    """Run one launch; returns a dict of the figures (and the robot_description file)."""
+class BareWorker:
+    """bare_worker.py on the launch's world and robot, in a session of its own as the launch."""
+
+    def __init__(self, lib, cfg, urdf):
+        self.proc = subprocess.Popen(
+            ['/usr/bin/python3', os.path.join(HERE, 'bare_worker.py'), lib, world_path(cfg), urdf],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, start_new_session=True)
+        if self.proc.stdout.readline().strip() != 'ready':
+            raise SystemExit('sim_rtf --launch: the bare C worker did not start')
+
+    def __call__(self, steps):
+        self.proc.stdin.write('%d\n' % steps)
+        self.proc.stdin.flush()
+        wall, cpu = self.proc.stdout.readline().split()
+        return float(wall), float(cpu)
+
+    def close(self):
+        self.proc.stdin.close()
+        self.proc.wait(timeout=30)
+
+
+def _call(name):
+    import rospy
+    from std_srvs.srv import Empty
+    rospy.ServiceProxy(name, Empty)()
+
+
+def measure_launch(name, seconds, warmup, tmp, paced=False, bare_lib=None, bare_steps=0):
+    """Run one launch; returns a dict of the figures (and the robot_description file).
+    With bare_lib (not paced): the bare C loop interleaved with the window (module doc)."""
     from course_testing import Proc, RosCore
     import rospy
     from gazebo_msgs.srv import GetWorldProperties
@@ -189,27 +222,45 @@ def measure_launch(name, seconds, warmup, tmp, paced=False):
         sim = find_sim_node(tree(launch.pid))
         if sim is None:
             raise SystemExit('sim_rtf --launch: no process named gazebo under roslaunch')
-        listener.send_signal(signal.SIGUSR1)
-        load = os.getloadavg()[0]
-        s0, w0 = props().sim_time, time.monotonic()
-        p0, t0 = tree(launch.pid), threads(sim)
-        time.sleep(seconds)
-        s1, w1 = props().sim_time, time.monotonic()
-        p1, t1 = tree(launch.pid), threads(sim)
-        listener.send_signal(signal.SIGINT)
-        stats = json.loads(listener.stdout.readline())
-        listener.wait(timeout=30)
         urdf = os.path.join(tmp, '%s.urdf' % name)
         desc = rospy.get_param('/robot_description')
         open(urdf, 'w').write(desc)
+        bare = BareWorker(bare_lib, cfg, urdf) if bare_lib and not paced else None
+        segments = SEGMENTS if bare else 1
+        listener.send_signal(signal.SIGUSR1)
+        load = os.getloadavg()[0]
+        sim_s = wall_s = 0.0
+        procs, ths, bare_runs = {}, {}, []
+        for _ in range(segments):
+            s0, w0 = props().sim_time, time.monotonic()
+            p0, t0 = tree(launch.pid), threads(sim)
+            time.sleep(seconds / segments)
+            s1, w1 = props().sim_time, time.monotonic()
+            p1, t1 = tree(launch.pid), threads(sim)
+            sim_s += s1 - s0
+            wall_s += w1 - w0
+            for p, v in p1.items():
+                if p in p0:
+                    procs[p] = (v[0], procs.get(p, (v[0], 0.0))[1] + v[1] - p0[p][1])
+            for k, v in t1.items():
+                if k in t0:
+                    old = ths.get(k, (v[0], 0.0, 0, 0))
+                    ths[k] = (v[0], old[1] + v[1] - t0[k][1], old[2] + v[2][0] - t0[k][2][0],
+                              old[3] + v[2][1] - t0[k][2][1])
+            if bare:
+                _call('/gazebo/pause_physics')
+                time.sleep(0.2)         # the nodes settle (no /clock, no sensors)
+                bare_runs.append(bare(max(1, bare_steps // segments)))
+                _call('/gazebo/unpause_physics')
+        if bare:
+            bare.close()
+        listener.send_signal(signal.SIGINT)
+        stats = json.loads(listener.stdout.readline())
+        listener.wait(timeout=30)
         warn = [l for l in launch.output().splitlines() if '[ERROR]' in l or 'WARN' in l]
-        return {'sim': s1 - s0, 'wall': w1 - w0, 'shipped_rate': shipped_rate, 'load': load,
-                'paced': paced,
-                'procs': {p: (v[0], v[1] - p0[p][1]) for p, v in p1.items() if p in p0},
-                'sim_pid': sim, 'threads': {k: (v[0], v[1] - t0[k][1],
-                                                v[2][0] - t0[k][2][0], v[2][1] - t0[k][2][1])
-                                            for k, v in t1.items() if k in t0},
-                'stats': stats, 'urdf': urdf, 'warn': warn}
+        return {'sim': sim_s, 'wall': wall_s, 'shipped_rate': shipped_rate, 'load': load,
+                'paced': paced, 'procs': procs, 'sim_pid': sim, 'threads': ths,
+                'bare_runs': bare_runs, 'stats': stats, 'urdf': urdf, 'warn': warn}
     finally:
         if listener is not None and listener.poll() is None:
             listener.kill()
@@ -241,10 +292,14 @@ def report(name, m, bare, bare_cpu):
     else:
         lines = ['%s roslaunch %s (world rate %g set to 0 through /gazebo/set_physics_properties): '
                  '%.2fx real time over %.1f wall s = %.2f of the bare C loop (%.1fx, same world and '
-                 'robot, this run, best of three); per CPU second of the whole launch %.2fx = %.2f '
-                 'of bare C per CPU second (%.1fx)'
+                 'robot, this run, interleaved with ours: %s); per CPU second of the whole launch '
+                 '%.2fx = %.2f of bare C per CPU second (%.1fx); sim_node alone per CPU second '
+                 '%.2fx = %.2f'
                  % (p, ' '.join(cfg['args']), m['shipped_rate'], rtf, wall, rtf / bare, bare,
-                    cpu_rtf, cpu_rtf / bare_cpu, bare_cpu)]
+                    ' '.join('%.1fx' % r[0] for r in m.get('bare_runs', [])), cpu_rtf,
+                    cpu_rtf / bare_cpu, bare_cpu, sim / max(m['procs'].get(m['sim_pid'],
+                                                                           ('', 1e9))[1], 1e-9),
+                    sim / max(m['procs'].get(m['sim_pid'], ('', 1e9))[1], 1e-9) / bare_cpu)]
     lines.append('%s CPU over the window: %.2f s for %.2f simulated s (%.2f CPU s per simulated '
                  's; load average %.1f on %d cores at its start); per process:'
                  % (p, total_cpu, sim, total_cpu / max(sim, 1e-9), m.get('load', 0.0),
@@ -283,12 +338,12 @@ def report(name, m, bare, bare_cpu):
     return lines
 
 
-def measure_in_child(name, seconds, warmup, tmp, paced=False):
+def measure_in_child(name, seconds, warmup, tmp, paced=False, bare_lib='', bare_steps=0):
     """measure_launch in a process of its own (rospy joins one master per process)."""
     path = os.path.join(tmp, '%s.json' % name)
     subprocess.run(['/usr/bin/python3', os.path.abspath(__file__), name, str(seconds),
-                    str(warmup), tmp, path] + (['paced'] if paced else []), check=True,
-                   timeout=seconds + warmup + 900)
+                    str(warmup), tmp, path, 'paced' if paced else 'fast', bare_lib or '',
+                    str(bare_steps)], check=True, timeout=seconds + warmup + 900)
     m = json.load(open(path))
     m['procs'] = {int(k): tuple(v) for k, v in m['procs'].items()}
     m['threads'] = {int(k): tuple(v) for k, v in m['threads'].items()}
@@ -303,14 +358,14 @@ def run(names, seconds, warmup, bare_steps, build_bare_c, bare_c_loop, paced=Fal
         if name not in LAUNCHES:
             raise SystemExit('sim_rtf --launch: unknown launch %r (known: %s)'
                              % (name, ', '.join(LAUNCHES)))
-        m = measure_in_child(name, seconds, warmup, tmp, paced)
+        m = measure_in_child(name, seconds, warmup, tmp, paced, lib, bare_steps)
         if paced:       # the figure is the achieved rate and the CPU per simulated second
             bare = bare_cpu = float('nan')
         else:
-            # best of three (the machine's load varies): the conservative baseline for our ratio
-            runs = [bare_c_loop(lib, world_path(LAUNCHES[name]), m['urdf'], bare_steps)
-                    for _ in range(3)]
-            bare, bare_cpu = max(r[0] for r in runs), max(r[1] for r in runs)
+            # the runs interleaved with ours: total simulated over total wall / CPU time
+            steps = [1.0 / len(m['bare_runs'])] * len(m['bare_runs'])
+            bare = sum(steps) / sum(k / r[0] for k, r in zip(steps, m['bare_runs']))
+            bare_cpu = sum(steps) / sum(k / r[1] for k, r in zip(steps, m['bare_runs']))
         lines = report(name, m, bare, bare_cpu)
         for line in lines:
             print(line, flush=True)
@@ -320,8 +375,9 @@ def run(names, seconds, warmup, bare_steps, build_bare_c, bare_c_loop, paced=Fal
 
 
 def child_main(argv):
-    name, seconds, warmup, tmp, out = argv[1:6]
-    m = measure_launch(name, float(seconds), float(warmup), tmp, paced='paced' in argv[6:])
+    name, seconds, warmup, tmp, out, mode, bare_lib, bare_steps = argv[1:9]
+    m = measure_launch(name, float(seconds), float(warmup), tmp, paced=mode == 'paced',
+                       bare_lib=bare_lib or None, bare_steps=int(bare_steps))
     with open(out, 'w') as f:
         json.dump(m, f)
 
