@@ -116,8 +116,8 @@ void Pid::initDynamicReconfig(ros::NodeHandle& node)
 
   // the server starts from the parameter server's values: show ours instead, then listen
   updateDynamicReconfig();
-  param_reconfig_server_->setCallback(
-      [this](control_toolbox::ParametersConfig& config, uint32_t level) { dynamicReconfigCallback(config, level); });
+  param_reconfig_server_->setCallback([this](control_toolbox::ParametersConfig& config, uint32_t level)
+                                      { dynamicReconfigCallback(config, level); });
 }
 
 void Pid::reset()

@@ -19,8 +19,8 @@ TEST(PidParams, ReadsGainsAndClamps)
   EXPECT_EQ(100.0, g.p_gain_);
   EXPECT_EQ(0.01, g.i_gain_);
   EXPECT_EQ(10.0, g.d_gain_);
-  EXPECT_EQ(2.0, g.i_max_);     // from i_clamp
-  EXPECT_EQ(-0.5, g.i_min_);    // i_clamp_min overrides, sign forced to <= 0
+  EXPECT_EQ(2.0, g.i_max_);   // from i_clamp
+  EXPECT_EQ(-0.5, g.i_min_);  // i_clamp_min overrides, sign forced to <= 0
   EXPECT_TRUE(g.antiwindup_);
 }
 
@@ -81,11 +81,12 @@ TEST(PidParams, PublishesStateWhenAsked)
   ASSERT_TRUE(pid.init(nh));
   std::atomic<int> count(0);
   std::atomic<double> last_output(0.0);
-  ros::Subscriber sub = nh.subscribe<control_msgs::PidState>(
-      "state", 10, [&](const control_msgs::PidState::ConstPtr& msg) {
-        last_output = msg->output;
-        ++count;
-      });
+  ros::Subscriber sub = nh.subscribe<control_msgs::PidState>("state", 10,
+                                                             [&](const control_msgs::PidState::ConstPtr& msg)
+                                                             {
+                                                               last_output = msg->output;
+                                                               ++count;
+                                                             });
   for (int i = 0; i < 6000 && sub.getNumPublishers() == 0; ++i)
     ros::WallDuration(0.01).sleep();
   ASSERT_EQ(1u, sub.getNumPublishers()) << "nobody publishes /state_pid/state";

@@ -65,7 +65,7 @@ TEST(Pid, AntiwindupWithNegativeIGain)
 TEST(Pid, DerivativeByFiniteDifference)
 {
   Pid pid(0.0, 0.0, 1.0);
-  EXPECT_DOUBLE_EQ(1.0, pid.computeCommand(1.0, ONE_SECOND));   // (1 - 0) / 1
+  EXPECT_DOUBLE_EQ(1.0, pid.computeCommand(1.0, ONE_SECOND));  // (1 - 0) / 1
   EXPECT_DOUBLE_EQ(0.0, pid.computeCommand(1.0, ONE_SECOND));
   EXPECT_DOUBLE_EQ(-20.0, pid.computeCommand(0.8, ros::Duration(0.01)));
 }

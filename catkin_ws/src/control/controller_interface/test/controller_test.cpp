@@ -56,7 +56,7 @@ public:
 };
 
 class MultiCtrl : public controller_interface::MultiInterfaceController<JointStateInterface, EffortJointInterface,
-                                                                          VelocityJointInterface>
+                                                                        VelocityJointInterface>
 {
 public:
   explicit MultiCtrl(bool optional)

@@ -23,9 +23,10 @@ ControllerManager::ControllerManager(hardware_interface::RobotHW* robot_hw, cons
   }
   catch (const std::exception& e)
   {
-    ROS_ERROR("Controller manager: cannot create the controller plugin loader (package controller_interface, "
-              "base class controller_interface::ControllerBase): %s. Only registered loaders will be used.",
-              e.what());
+    ROS_ERROR(
+        "Controller manager: cannot create the controller plugin loader (package controller_interface, "
+        "base class controller_interface::ControllerBase): %s. Only registered loaders will be used.",
+        e.what());
   }
 
   // Advertise services last: callbacks may come at once.
@@ -125,9 +126,10 @@ void ControllerManager::update(const ros::Time& time, const ros::Duration& perio
 void ControllerManager::abortAfterException(ControllerSpec& spec, const ros::Time& time, const char* where,
                                             const char* what)
 {
-  ROS_ERROR("Controller '%s' (type '%s') threw an exception in %s: %s. The controller is aborted; stop and "
-            "start it again, or unload it.",
-            spec.info.name.c_str(), spec.info.type.c_str(), where, what);
+  ROS_ERROR(
+      "Controller '%s' (type '%s') threw an exception in %s: %s. The controller is aborted; stop and "
+      "start it again, or unload it.",
+      spec.info.name.c_str(), spec.info.type.c_str(), where, what);
   try
   {
     spec.c->abortRequest(time);
@@ -166,8 +168,7 @@ bool ControllerManager::safeRequest(controller_interface::ControllerBase* c, con
   {
     ControllerSpec* spec = specOf(c);
     if (spec)
-      abortAfterException(*spec, time, request == Request::START ? "starting" : "stopping/waiting/aborting",
-                          e.what());
+      abortAfterException(*spec, time, request == Request::START ? "starting" : "stopping/waiting/aborting", e.what());
   }
   catch (...)
   {
@@ -293,9 +294,10 @@ bool ControllerManager::loadController(const std::string& name)
   std::string type;
   if (!c_nh.getParam("type", type))
   {
-    ROS_ERROR("Could not load controller '%s' because the type was not specified. Did you load the controller "
-              "configuration on the parameter server (namespace: '%s')?",
-              name.c_str(), c_nh.getNamespace().c_str());
+    ROS_ERROR(
+        "Could not load controller '%s' because the type was not specified. Did you load the controller "
+        "configuration on the parameter server (namespace: '%s')?",
+        name.c_str(), c_nh.getNamespace().c_str());
     return false;
   }
 
@@ -371,8 +373,7 @@ bool ControllerManager::unloadController(const std::string& name)
                            [&name](const ControllerSpec& spec) { return spec.info.name == name; });
     if (it == controllers_.end())
     {
-      ROS_ERROR("Could not unload controller with name %s because no controller with this name exists",
-                name.c_str());
+      ROS_ERROR("Could not unload controller with name %s because no controller with this name exists", name.c_str());
       return false;
     }
     if (it->c->isRunning())
@@ -404,10 +405,11 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
   int strictness = strictness_in;
   if (strictness == 0)
   {
-    ROS_WARN("Controller Manager: To switch controllers you need to specify a strictness level of "
-             "controller_manager_msgs::SwitchController::STRICT (%d) or ::BEST_EFFORT (%d). "
-             "Defaulting to ::BEST_EFFORT.",
-             SwitchRequest::STRICT, SwitchRequest::BEST_EFFORT);
+    ROS_WARN(
+        "Controller Manager: To switch controllers you need to specify a strictness level of "
+        "controller_manager_msgs::SwitchController::STRICT (%d) or ::BEST_EFFORT (%d). "
+        "Defaulting to ::BEST_EFFORT.",
+        SwitchRequest::STRICT, SwitchRequest::BEST_EFFORT);
     strictness = SwitchRequest::BEST_EFFORT;
   }
   const bool strict = strictness == SwitchRequest::STRICT;
@@ -443,8 +445,7 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
     {
       if (strict)
       {
-        ROS_ERROR("Could not start controller with name %s because no controller with this name exists",
-                  name.c_str());
+        ROS_ERROR("Could not start controller with name %s because no controller with this name exists", name.c_str());
         clearSwitchRequest();
         return false;
       }
@@ -515,8 +516,9 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
 
   if (!robot_hw_->prepareSwitch(switch_start_list_, switch_stop_list_))
   {
-    ROS_ERROR("Could not switch controllers. The hardware interface combination for the requested controllers is "
-              "unfeasible.");
+    ROS_ERROR(
+        "Could not switch controllers. The hardware interface combination for the requested controllers is "
+        "unfeasible.");
     clearSwitchRequest();
     return false;
   }
@@ -539,8 +541,8 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
   // whose paused world calls no update(), waits as upstream does)
   ROS_DEBUG("Request atomic controller switch from realtime loop");
   const bool bounded = switch_wait_timeout_ > 0.0;
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::duration<double>(switch_wait_timeout_ + std::max(0.0, timeout));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(switch_wait_timeout_ + std::max(0.0, timeout));
   while (switch_params_.do_switch)
   {
     if (!ros::ok())
@@ -558,14 +560,16 @@ bool ControllerManager::switchController(const std::vector<std::string>& start_c
     if (!ros::ok())
       return false;
     if (started)
-      ROS_ERROR("Controller manager: the controller switch did not complete within %.1f s: the hardware did not "
-                "finish switching. Switch withdrawn.",
-                switch_wait_timeout_ + std::max(0.0, timeout));
+      ROS_ERROR(
+          "Controller manager: the controller switch did not complete within %.1f s: the hardware did not "
+          "finish switching. Switch withdrawn.",
+          switch_wait_timeout_ + std::max(0.0, timeout));
     else
-      ROS_ERROR("Controller manager: update() was not called within %.1f s, so the controller switch was withdrawn. "
-                "Is the control loop running, in another thread than the one serving the controller_manager "
-                "services (e.g. use a ros::AsyncSpinner)?",
-                switch_wait_timeout_ + std::max(0.0, timeout));
+      ROS_ERROR(
+          "Controller manager: update() was not called within %.1f s, so the controller switch was withdrawn. "
+          "Is the control loop running, in another thread than the one serving the controller_manager "
+          "services (e.g. use a ros::AsyncSpinner)?",
+          switch_wait_timeout_ + std::max(0.0, timeout));
     return false;
   }
   clearSwitchRequest();

@@ -27,9 +27,7 @@ DummyRobotHW::DummyRobotHW(const std::vector<std::string>& joint_names)
   registerInterface(&pji_);
 }
 
-void DummyRobotHW::read(const ros::Time& /*time*/, const ros::Duration& /*period*/)
-{
-}
+void DummyRobotHW::read(const ros::Time& /*time*/, const ros::Duration& /*period*/) {}
 
 void DummyRobotHW::write(const ros::Time& /*time*/, const ros::Duration& period)
 {
@@ -74,9 +72,8 @@ void DummyRobotHW::doSwitch(const std::list<hardware_interface::ControllerInfo>&
                             const std::list<hardware_interface::ControllerInfo>& stop_list)
 {
   ++do_switch_calls_;
-  auto index = [this](const std::string& name) {
-    return static_cast<size_t>(std::find(names_.begin(), names_.end(), name) - names_.begin());
-  };
+  auto index = [this](const std::string& name)
+  { return static_cast<size_t>(std::find(names_.begin(), names_.end(), name) - names_.begin()); };
   for (const auto& info : stop_list)
     for (const auto& res : info.claimed_resources)
       for (const auto& joint : res.resources)
@@ -92,7 +89,8 @@ void DummyRobotHW::doSwitch(const std::list<hardware_interface::ControllerInfo>&
           mode_[index(joint)] = modeOf(res.hardware_interface);
 }
 
-hardware_interface::RobotHW::SwitchState DummyRobotHW::switchResult(const hardware_interface::ControllerInfo& info) const
+hardware_interface::RobotHW::SwitchState DummyRobotHW::switchResult(
+    const hardware_interface::ControllerInfo& info) const
 {
   auto it = controller_switch_result_.find(info.name);
   return it == controller_switch_result_.end() ? switch_result_ : it->second;

@@ -2,9 +2,9 @@
 //
 // Publishes /clock (set use_sim_time for the other nodes), steps a fixed period of ~period
 // [s, default 0.01] per cycle, pacing itself to ~real_time_factor (default 1; 0 = as fast as
-// possible). With ~publish_clock false (a second robot in one test) it only keeps its own time. The loop `read(); cm.update(); write();` runs in its own thread; callbacks are
-// served by an AsyncSpinner. Publishes ~commands (std_msgs/Float64MultiArray: the command of
-// every joint, in ~joints order) and ~positions after every cycle.
+// possible). With ~publish_clock false (a second robot in one test) it only keeps its own time. The loop `read();
+// cm.update(); write();` runs in its own thread; callbacks are served by an AsyncSpinner. Publishes ~commands
+// (std_msgs/Float64MultiArray: the command of every joint, in ~joints order) and ~positions after every cycle.
 #include <atomic>
 #include <thread>
 
@@ -42,35 +42,37 @@ int main(int argc, char** argv)
   spinner.start();
 
   std::atomic<bool> running{ true };
-  std::thread loop([&]() {
-    ros::Time t(1.0);  // start at 1 s: time 0 means "no clock yet" to ROS clients
-    const ros::Duration period(period_s);
-    const double wall_step = real_time_factor > 0.0 ? period_s / real_time_factor : 0.0;
-    while (running && ros::ok())
-    {
-      rosgraph_msgs::Clock clock;
-      clock.clock = t;
-      if (publish_clock)
-        clock_pub.publish(clock);
-
-      robot.read(t, period);
-      cm.update(t, period);
-      robot.write(t, period);
-
-      std_msgs::Float64MultiArray cmds, positions;
-      for (size_t i = 0; i < joints.size(); ++i)
+  std::thread loop(
+      [&]()
       {
-        cmds.data.push_back(robot.command(i));
-        positions.data.push_back(robot.position(i));
-      }
-      cmd_pub.publish(cmds);
-      pos_pub.publish(positions);
+        ros::Time t(1.0);  // start at 1 s: time 0 means "no clock yet" to ROS clients
+        const ros::Duration period(period_s);
+        const double wall_step = real_time_factor > 0.0 ? period_s / real_time_factor : 0.0;
+        while (running && ros::ok())
+        {
+          rosgraph_msgs::Clock clock;
+          clock.clock = t;
+          if (publish_clock)
+            clock_pub.publish(clock);
 
-      t += period;
-      if (wall_step > 0.0)
-        ros::WallDuration(wall_step).sleep();
-    }
-  });
+          robot.read(t, period);
+          cm.update(t, period);
+          robot.write(t, period);
+
+          std_msgs::Float64MultiArray cmds, positions;
+          for (size_t i = 0; i < joints.size(); ++i)
+          {
+            cmds.data.push_back(robot.command(i));
+            positions.data.push_back(robot.position(i));
+          }
+          cmd_pub.publish(cmds);
+          pos_pub.publish(positions);
+
+          t += period;
+          if (wall_step > 0.0)
+            ros::WallDuration(wall_step).sleep();
+        }
+      });
 
   ros::waitForShutdown();
   running = false;

@@ -105,22 +105,24 @@ protected:
     cm_ = std::make_unique<TestCM>(hw_.get(), nh_);
     cm_->registerControllerLoader(std::make_shared<LocalLoader>());
     running_ = true;
-    loop_ = std::thread([this]() {
-      ros::Time t(1.0);
-      const ros::Duration period(0.01);
-      while (running_)
-      {
-        if (!paused_)
+    loop_ = std::thread(
+        [this]()
         {
-          hw_->read(t, period);
-          cm_->update(t, period, reset_next_.exchange(false));
-          hw_->write(t, period);
-          t += period;
-          ++cycles_;
-        }
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
-      }
-    });
+          ros::Time t(1.0);
+          const ros::Duration period(0.01);
+          while (running_)
+          {
+            if (!paused_)
+            {
+              hw_->read(t, period);
+              cm_->update(t, period, reset_next_.exchange(false));
+              hw_->write(t, period);
+              t += period;
+              ++cycles_;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+          }
+        });
   }
 
   void TearDown() override
@@ -269,8 +271,8 @@ TEST_F(CMSwitchTest, ResourceConflictsRefused)
   EXPECT_EQ("initialized", cm_->state("eff"));
   EXPECT_EQ("initialized", cm_->state("vel"));
   ASSERT_TRUE(cm_->switchController({ "eff" }, {}, Req::STRICT));
-  EXPECT_FALSE(cm_->switchController({ "vel" }, {}, Req::STRICT));  // eff still holds joint1
-  EXPECT_TRUE(cm_->switchController({ "eff2" }, {}, Req::STRICT));  // disjoint joints
+  EXPECT_FALSE(cm_->switchController({ "vel" }, {}, Req::STRICT));        // eff still holds joint1
+  EXPECT_TRUE(cm_->switchController({ "eff2" }, {}, Req::STRICT));        // disjoint joints
   EXPECT_TRUE(cm_->switchController({ "vel" }, { "eff" }, Req::STRICT));  // hand over joint1
   EXPECT_EQ("stopped", cm_->state("eff"));
   EXPECT_EQ("running", cm_->state("vel"));

@@ -13,8 +13,8 @@ double factor(double out, double in) { return in != 0.0 ? out / in : 1.0; }
 }  // namespace
 
 SpeedLimiter::SpeedLimiter(bool has_velocity_limits, bool has_acceleration_limits, bool has_jerk_limits,
-                           double min_velocity, double max_velocity, double min_acceleration,
-                           double max_acceleration, double min_jerk, double max_jerk)
+                           double min_velocity, double max_velocity, double min_acceleration, double max_acceleration,
+                           double min_jerk, double max_jerk)
   : has_velocity_limits(has_velocity_limits)
   , has_acceleration_limits(has_acceleration_limits)
   , has_jerk_limits(has_jerk_limits)

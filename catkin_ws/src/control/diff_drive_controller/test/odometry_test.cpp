@@ -109,9 +109,9 @@ TEST(Odometry, RollingWindowSmoothsVelocity)
   double left = 0.0, right = 0.0;
   t = drive(odom, left, right, 10.0, 10.0, 10, t);  // 1 m/s
   EXPECT_NEAR(1.0, odom.getLinear(), 1e-6);
-  t = drive(odom, left, right, 0.0, 0.0, 1, t);      // stop: mean of (1,1,1,0)
+  t = drive(odom, left, right, 0.0, 0.0, 1, t);  // stop: mean of (1,1,1,0)
   EXPECT_NEAR(0.75, odom.getLinear(), 1e-6);
-  t = drive(odom, left, right, 0.0, 0.0, 3, t);      // the window has forgotten the motion
+  t = drive(odom, left, right, 0.0, 0.0, 3, t);  // the window has forgotten the motion
   EXPECT_NEAR(0.0, odom.getLinear(), 1e-9);
 }
 

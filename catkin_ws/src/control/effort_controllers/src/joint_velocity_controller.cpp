@@ -42,8 +42,7 @@ void JointVelocityController::setGains(const double& p, const double& i, const d
   pid_controller_.setGains(p, i, d, i_max, i_min, antiwindup);
 }
 
-void JointVelocityController::getGains(double& p, double& i, double& d, double& i_max, double& i_min,
-                                       bool& antiwindup)
+void JointVelocityController::getGains(double& p, double& i, double& d, double& i_max, double& i_min, bool& antiwindup)
 {
   pid_controller_.getGains(p, i, d, i_max, i_min, antiwindup);
 }

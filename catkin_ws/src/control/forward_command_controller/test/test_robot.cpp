@@ -51,9 +51,9 @@ public:
       j.name = static_cast<std::string>(list[i]["name"]);
       j.interface = list[i].hasMember("interface") ? static_cast<std::string>(list[i]["interface"]) : "effort";
       if (list[i].hasMember("position"))
-        j.pos = list[i]["position"].getType() == XmlRpc::XmlRpcValue::TypeInt ?
-                    static_cast<int>(list[i]["position"]) :
-                    static_cast<double>(list[i]["position"]);
+        j.pos = list[i]["position"].getType() == XmlRpc::XmlRpcValue::TypeInt
+                    ? static_cast<int>(list[i]["position"])
+                    : static_cast<double>(list[i]["position"]);
       j.cmd = j.interface == "position" ? j.pos : 0.0;
     }
     for (Joint& j : joints_)
@@ -137,22 +137,24 @@ int main(int argc, char** argv)
   spinner.start();
 
   std::atomic<bool> running(true);
-  std::thread loop([&] {
-    const ros::Duration period(period_s);
-    ros::Time time(0.0);
-    ros::WallRate rate(realtime_factor / period_s);
-    while (running && ros::ok())
-    {
-      time += period;
-      rosgraph_msgs::Clock clock;
-      clock.clock = time;
-      clock_pub.publish(clock);
-      robot.read(time, period);
-      cm.update(time, period);
-      robot.write(time, period);
-      rate.sleep();
-    }
-  });
+  std::thread loop(
+      [&]
+      {
+        const ros::Duration period(period_s);
+        ros::Time time(0.0);
+        ros::WallRate rate(realtime_factor / period_s);
+        while (running && ros::ok())
+        {
+          time += period;
+          rosgraph_msgs::Clock clock;
+          clock.clock = time;
+          clock_pub.publish(clock);
+          robot.read(time, period);
+          cm.update(time, period);
+          robot.write(time, period);
+          rate.sleep();
+        }
+      });
   ros::waitForShutdown();
   running = false;
   loop.join();

@@ -43,7 +43,7 @@ public:
   }
 
 private:
-  double pos_[4] = {0, 0, 0, 0}, vel_[4] = {0, 0, 0, 0}, eff_[4] = {0, 0, 0, 0}, cmd_[4] = {0, 0, 0, 0};
+  double pos_[4] = { 0, 0, 0, 0 }, vel_[4] = { 0, 0, 0, 0 }, eff_[4] = { 0, 0, 0, 0 }, cmd_[4] = { 0, 0, 0, 0 };
   hardware_interface::JointStateInterface state_;
   hardware_interface::VelocityJointInterface velocity_;
 };
@@ -54,13 +54,13 @@ void setParams(const std::string& ns)
   ros::param::set(ns + "/joint_state_controller/publish_rate", 50.0);
   const std::string d = ns + "/diffbot_controller/";
   ros::param::set(d + "type", std::string("diff_drive_controller/DiffDriveController"));
-  ros::param::set(d + "left_wheel", std::vector<std::string>{"wheel_1_joint", "wheel_3_joint"});
-  ros::param::set(d + "right_wheel", std::vector<std::string>{"wheel_2_joint", "wheel_4_joint"});
+  ros::param::set(d + "left_wheel", std::vector<std::string>{ "wheel_1_joint", "wheel_3_joint" });
+  ros::param::set(d + "right_wheel", std::vector<std::string>{ "wheel_2_joint", "wheel_4_joint" });
   ros::param::set(d + "wheel_separation", 0.182);
   ros::param::set(d + "wheel_radius", 0.0325);
   ros::param::set(d + "publish_rate", 50.0);
   ros::param::set(d + "cmd_vel_timeout", 0.5);
-  const std::vector<double> cov{0.001, 0.001, 1e6, 1e6, 1e6, 1000.0};
+  const std::vector<double> cov{ 0.001, 0.001, 1e6, 1e6, 1e6, 1000.0 };
   ros::param::set(d + "pose_covariance_diagonal", cov);
   ros::param::set(d + "twist_covariance_diagonal", cov);
 }
@@ -79,7 +79,7 @@ int main(int argc, char** argv)
   spinner.start();
   const ros::Duration period(0.001);
 
-  for (const char* name : {"joint_state_controller", "diffbot_controller"})
+  for (const char* name : { "joint_state_controller", "diffbot_controller" })
   {
     if (!cm.loadController(name))
     {
@@ -88,9 +88,7 @@ int main(int argc, char** argv)
     }
   }
   bool switched = false;
-  std::thread sw([&] {
-    switched = cm.switchController({"joint_state_controller", "diffbot_controller"}, {}, 2);
-  });
+  std::thread sw([&] { switched = cm.switchController({ "joint_state_controller", "diffbot_controller" }, {}, 2); });
   while (!switched && sw.joinable())
   {
     cm.update(ros::Time::now(), period);
@@ -133,8 +131,9 @@ int main(int argc, char** argv)
     sum += v;
   const double mean = sum / us.size();
   const double p99 = sorted[static_cast<std::size_t>(0.99 * (sorted.size() - 1))];
-  printf("control_loop: ControllerManager::update, 4 joints, joint_state_controller + diff_drive_controller, %d updates\n",
-         updates);
+  printf(
+      "control_loop: ControllerManager::update, 4 joints, joint_state_controller + diff_drive_controller, %d updates\n",
+      updates);
   printf("  mean %.2f us, p99 %.2f us, max %.2f us\n", mean, p99, sorted.back());
   printf("  mean / 1 kHz period: %.4f (target <= 0.02): %s; p99 / period %.4f\n", mean / 1000.0,
          mean / 1000.0 <= 0.02 ? "OK" : "ABOVE TARGET", p99 / 1000.0);

@@ -18,8 +18,7 @@ BridgeModel::BridgeModel(std::vector<BridgeJoint> joints)
 }
 
 bool BridgeModel::setState(const std::vector<std::string>& names, const std::vector<double>& position,
-                           const std::vector<double>& velocity, const std::vector<double>& effort,
-                           std::string* error)
+                           const std::vector<double>& velocity, const std::vector<double>& effort, std::string* error)
 {
   if (names != last_names_)
   {
@@ -46,8 +45,8 @@ bool BridgeModel::setState(const std::vector<std::string>& names, const std::vec
     if (error)
     {
       std::ostringstream s;
-      s << "joint state arrays are shorter than its " << names.size() << " names (position "
-        << position.size() << ", velocity " << velocity.size() << ", effort " << effort.size() << ")";
+      s << "joint state arrays are shorter than its " << names.size() << " names (position " << position.size()
+        << ", velocity " << velocity.size() << ", effort " << effort.size() << ")";
       *error = s.str();
     }
     last_names_.clear();

@@ -5,8 +5,7 @@
 namespace gazebo_ros_control
 {
 
-bool DefaultRobotHWSim::initSim(const std::string& robot_namespace, ros::NodeHandle model_nh,
-                                BridgeModel* parent_model)
+bool DefaultRobotHWSim::initSim(const std::string& robot_namespace, ros::NodeHandle model_nh, BridgeModel* parent_model)
 {
   (void)model_nh;
   model_ = parent_model;
@@ -31,10 +30,9 @@ bool DefaultRobotHWSim::initSim(const std::string& robot_namespace, ros::NodeHan
     joint_control_methods_[j] = joint.interface;
     saturation_.emplace_back(joint);
     ROS_DEBUG_STREAM_NAMED("default_robot_hw_sim", "Loading joint '" << joint.name << "' of type '"
-                                                                     << jointInterfaceName(joint.interface)
-                                                                     << "'");
-    js_interface_.registerHandle(hardware_interface::JointStateHandle(
-        joint.name, &joint_position_[j], &joint_velocity_[j], &joint_effort_[j]));
+                                                                     << jointInterfaceName(joint.interface) << "'");
+    js_interface_.registerHandle(
+        hardware_interface::JointStateHandle(joint.name, &joint_position_[j], &joint_velocity_[j], &joint_effort_[j]));
     switch (joint.interface)
     {
       case JointInterface::EFFORT:
@@ -58,8 +56,8 @@ bool DefaultRobotHWSim::initSim(const std::string& robot_namespace, ros::NodeHan
   registerInterface(&vj_interface_);
   registerInterface(&pj_interface_);
   ROS_INFO_STREAM_NAMED("default_robot_hw_sim", "DefaultRobotHWSim in namespace '"
-                                                    << (robot_namespace.empty() ? "/" : robot_namespace) << "': "
-                                                    << n_dof_ << " joint(s)");
+                                                    << (robot_namespace.empty() ? "/" : robot_namespace)
+                                                    << "': " << n_dof_ << " joint(s)");
   return true;
 }
 
@@ -138,9 +136,6 @@ double DefaultRobotHWSim::enforceAndStore(std::size_t j, double cmd, double dt)
   return cmd;
 }
 
-void DefaultRobotHWSim::eStopActive(const bool active)
-{
-  e_stop_active_ = active;
-}
+void DefaultRobotHWSim::eStopActive(const bool active) { e_stop_active_ = active; }
 
 }  // namespace gazebo_ros_control

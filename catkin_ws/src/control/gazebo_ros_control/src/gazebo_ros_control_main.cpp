@@ -23,9 +23,10 @@ int main(int argc, char** argv)
       options.parent_pid = std::atoi(args[++i].c_str());
     else
     {
-      ROS_FATAL("gazebo_ros_control_node: unknown argument '%s' (usage: gazebo_ros_control_node "
-                "[--estop-topic TOPIC] [--parent-pid PID] __ns:=ROBOT_NAMESPACE)",
-                args[i].c_str());
+      ROS_FATAL(
+          "gazebo_ros_control_node: unknown argument '%s' (usage: gazebo_ros_control_node "
+          "[--estop-topic TOPIC] [--parent-pid PID] __ns:=ROBOT_NAMESPACE)",
+          args[i].c_str());
       return 2;
     }
   }

@@ -66,9 +66,9 @@ bool GazeboRosControlNode::parseJoints(XmlRpc::XmlRpcValue& value, const std::st
       *error = where.str() + " (joint '" + j.name + "'): unknown interface '" + iface + "'";
       return false;
     }
-    const char* numeric[] = {"reduction", "lower", "upper", "effort", "velocity"};
-    double values[5] = {1.0, 0.0, 0.0, 0.0, 0.0};
-    bool present[5] = {false, false, false, false, false};
+    const char* numeric[] = { "reduction", "lower", "upper", "effort", "velocity" };
+    double values[5] = { 1.0, 0.0, 0.0, 0.0, 0.0 };
+    bool present[5] = { false, false, false, false, false };
     for (int k = 0; k < 5; ++k)
     {
       if (!e.hasMember(numeric[k]))
@@ -111,7 +111,8 @@ bool GazeboRosControlNode::init(std::string* error)
     {
       *error = "parameter " + joints_param +
                " not set: is ode_sim running a model whose URDF loads libgazebo_ros_control.so "
-               "in namespace '" + robot_namespace_ + "'?";
+               "in namespace '" +
+               robot_namespace_ + "'?";
       return false;
     }
     if (!warned)
@@ -169,8 +170,8 @@ bool GazeboRosControlNode::init(std::string* error)
   command_pub_ = model_nh_.advertise<sensor_msgs::JointState>("ode_sim/joint_commands", 10);
 
   ros::SubscribeOptions so = ros::SubscribeOptions::create<sensor_msgs::JointState>(
-      "ode_sim/joint_states", 10, [this](const sensor_msgs::JointStateConstPtr& m) { stateCallback(m); }, ros::VoidPtr(),
-      &state_queue_);
+      "ode_sim/joint_states", 10, [this](const sensor_msgs::JointStateConstPtr& m) { stateCallback(m); },
+      ros::VoidPtr(), &state_queue_);
   so.transport_hints = ros::TransportHints().tcpNoDelay();
   state_sub_ = model_nh_.subscribe(so);
 
@@ -181,10 +182,7 @@ bool GazeboRosControlNode::init(std::string* error)
   return true;
 }
 
-bool GazeboRosControlNode::parentAlive() const
-{
-  return options_.parent_pid <= 0 || getppid() == options_.parent_pid;
-}
+bool GazeboRosControlNode::parentAlive() const { return options_.parent_pid <= 0 || getppid() == options_.parent_pid; }
 
 void GazeboRosControlNode::run()
 {
@@ -204,10 +202,7 @@ void GazeboRosControlNode::run()
   spinner.stop();
 }
 
-void GazeboRosControlNode::estopCallback(const std_msgs::BoolConstPtr& msg)
-{
-  e_stop_active_ = msg->data;
-}
+void GazeboRosControlNode::estopCallback(const std_msgs::BoolConstPtr& msg) { e_stop_active_ = msg->data; }
 
 void GazeboRosControlNode::stateCallback(const sensor_msgs::JointStateConstPtr& msg)
 {

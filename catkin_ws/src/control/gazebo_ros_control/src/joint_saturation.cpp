@@ -9,10 +9,7 @@ namespace gazebo_ros_control
 
 namespace
 {
-double saturate(double v, double lo, double hi)
-{
-  return std::min(std::max(v, lo), hi);
-}
+double saturate(double v, double lo, double hi) { return std::min(std::max(v, lo), hi); }
 }  // namespace
 
 JointSaturation::JointSaturation(const BridgeJoint& joint)
@@ -20,10 +17,7 @@ JointSaturation::JointSaturation(const BridgeJoint& joint)
 {
 }
 
-void JointSaturation::reset()
-{
-  prev_cmd_ = std::numeric_limits<double>::quiet_NaN();
-}
+void JointSaturation::reset() { prev_cmd_ = std::numeric_limits<double>::quiet_NaN(); }
 
 double JointSaturation::enforce(double command, double position, double velocity, double period)
 {

@@ -30,14 +30,14 @@ class HwSim : public ::testing::Test
 {
 protected:
   HwSim()
-    : model_({joint("eff", JointInterface::EFFORT), joint("vel", JointInterface::VELOCITY),
-              joint("pos", JointInterface::POSITION), joint("state", JointInterface::STATE)})
+    : model_({ joint("eff", JointInterface::EFFORT), joint("vel", JointInterface::VELOCITY),
+               joint("pos", JointInterface::POSITION), joint("state", JointInterface::STATE) })
   {
     ros::NodeHandle nh;
     EXPECT_TRUE(hw_.initSim("/robot", nh, &model_));
     std::string error;
-    EXPECT_TRUE(model_.setState({"eff", "vel", "pos", "state"}, {0.1, 0.2, 0.3, 0.4}, {1, 2, 0, 4},
-                                {5, 6, 7, 8}, &error));
+    EXPECT_TRUE(model_.setState({ "eff", "vel", "pos", "state" }, { 0.1, 0.2, 0.3, 0.4 }, { 1, 2, 0, 4 },
+                                { 5, 6, 7, 8 }, &error));
     hw_.readSim(ros::Time(1.0), ros::Duration(0.01));
   }
   BridgeModel model_;
@@ -54,9 +54,9 @@ TEST_F(HwSim, RegistersInterfaces)
   EXPECT_DOUBLE_EQ(2.0, js->getHandle("vel").getVelocity());
   EXPECT_DOUBLE_EQ(7.0, js->getHandle("pos").getEffort());
   ASSERT_NE(nullptr, hw_.get<hardware_interface::EffortJointInterface>());
-  EXPECT_EQ(std::vector<std::string>{"eff"}, hw_.get<hardware_interface::EffortJointInterface>()->getNames());
-  EXPECT_EQ(std::vector<std::string>{"vel"}, hw_.get<hardware_interface::VelocityJointInterface>()->getNames());
-  EXPECT_EQ(std::vector<std::string>{"pos"}, hw_.get<hardware_interface::PositionJointInterface>()->getNames());
+  EXPECT_EQ(std::vector<std::string>{ "eff" }, hw_.get<hardware_interface::EffortJointInterface>()->getNames());
+  EXPECT_EQ(std::vector<std::string>{ "vel" }, hw_.get<hardware_interface::VelocityJointInterface>()->getNames());
+  EXPECT_EQ(std::vector<std::string>{ "pos" }, hw_.get<hardware_interface::PositionJointInterface>()->getNames());
 }
 
 TEST_F(HwSim, NoCommandStaysNaN)
@@ -91,7 +91,7 @@ TEST_F(HwSim, EStopZeroesAndHolds)
   EXPECT_DOUBLE_EQ(0.0, model_.command(1));
   EXPECT_DOUBLE_EQ(0.3, model_.command(2));
   std::string error;
-  ASSERT_TRUE(model_.setState({"eff", "vel", "pos", "state"}, {0, 0, 0.9, 0}, {}, {}, &error));
+  ASSERT_TRUE(model_.setState({ "eff", "vel", "pos", "state" }, { 0, 0, 0.9, 0 }, {}, {}, &error));
   hw_.readSim(ros::Time(1.01), ros::Duration(0.01));
   hw_.writeSim(ros::Time(1.01), ros::Duration(0.01));
   EXPECT_DOUBLE_EQ(0.3, model_.command(2));  // held where the stop began

@@ -81,18 +81,18 @@ TEST(BridgeModel, StateByNameAnyOrder)
   a.name = "a";
   BridgeJoint b = joint(JointInterface::VELOCITY);
   b.name = "b";
-  BridgeModel m({a, b});
+  BridgeModel m({ a, b });
   std::string error;
-  ASSERT_TRUE(m.setState({"b", "x", "a"}, {1.0, 2.0, 3.0}, {4.0, 5.0, 6.0}, {}, &error)) << error;
+  ASSERT_TRUE(m.setState({ "b", "x", "a" }, { 1.0, 2.0, 3.0 }, { 4.0, 5.0, 6.0 }, {}, &error)) << error;
   EXPECT_DOUBLE_EQ(3.0, m.position(0));
   EXPECT_DOUBLE_EQ(1.0, m.position(1));
   EXPECT_DOUBLE_EQ(6.0, m.velocity(0));
   EXPECT_DOUBLE_EQ(0.0, m.effort(1));
-  ASSERT_TRUE(m.setState({"b", "x", "a"}, {7.0, 2.0, 8.0}, {}, {}, &error)) << error;
+  ASSERT_TRUE(m.setState({ "b", "x", "a" }, { 7.0, 2.0, 8.0 }, {}, {}, &error)) << error;
   EXPECT_DOUBLE_EQ(8.0, m.position(0));
-  EXPECT_FALSE(m.setState({"b"}, {1.0}, {}, {}, &error));
+  EXPECT_FALSE(m.setState({ "b" }, { 1.0 }, {}, {}, &error));
   EXPECT_NE(std::string::npos, error.find("'a' is missing")) << error;
-  EXPECT_FALSE(m.setState({"a", "b"}, {1.0}, {}, {}, &error));
+  EXPECT_FALSE(m.setState({ "a", "b" }, { 1.0 }, {}, {}, &error));
   EXPECT_NE(std::string::npos, error.find("shorter")) << error;
   EXPECT_DOUBLE_EQ(8.0, m.position(0));  // kept
   EXPECT_TRUE(std::isnan(m.command(0)));

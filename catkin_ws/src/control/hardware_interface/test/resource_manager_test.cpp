@@ -48,9 +48,10 @@ TEST_F(ResourceManagerTest, MissingHandleThrowsLogicError)
   }
   catch (const std::logic_error& e)
   {
-    EXPECT_EQ("Could not find resource 'nope' in "
-              "'hardware_interface::ResourceManager<hardware_interface::JointStateHandle>'.",
-              std::string(e.what()));
+    EXPECT_EQ(
+        "Could not find resource 'nope' in "
+        "'hardware_interface::ResourceManager<hardware_interface::JointStateHandle>'.",
+        std::string(e.what()));
   }
 }
 

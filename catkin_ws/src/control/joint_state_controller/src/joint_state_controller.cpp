@@ -63,7 +63,8 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw, ros
     }
   }
 
-  realtime_pub_ = std::make_shared<realtime_tools::RealtimePublisher<sensor_msgs::JointState>>(root_nh, "joint_states", 4);
+  realtime_pub_ =
+      std::make_shared<realtime_tools::RealtimePublisher<sensor_msgs::JointState>>(root_nh, "joint_states", 4);
   // msg_ is not shared with the publishing thread until the first unlockAndPublish()
   sensor_msgs::JointState& msg = realtime_pub_->msg_;
   for (const std::string& name : joint_names)
@@ -133,8 +134,8 @@ void JointStateController::addExtraJoints(const ros::NodeHandle& nh, sensor_msgs
       ROS_WARN_STREAM("Joint state interface already contains specified extra joint '" << name << "'.");
       continue;
     }
-    double values[3] = {0.0, 0.0, 0.0};
-    const char* fields[3] = {"position", "velocity", "effort"};
+    double values[3] = { 0.0, 0.0, 0.0 };
+    const char* fields[3] = { "position", "velocity", "effort" };
     bool valid = true;
     for (int k = 0; k < 3 && valid; ++k)
     {

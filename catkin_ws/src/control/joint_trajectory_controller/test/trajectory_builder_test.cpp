@@ -18,10 +18,7 @@ typedef JointTrajectorySegment<SegmentImpl> Segment;
 typedef std::vector<std::vector<Segment>> Trajectory;
 typedef Segment::RealtimeGoalHandlePtr RealtimeGoalHandlePtr;
 
-static Trajectory preallocated(unsigned int n_joints)
-{
-  return Trajectory(n_joints, std::vector<Segment>(1));
-}
+static Trajectory preallocated(unsigned int n_joints) { return Trajectory(n_joints, std::vector<Segment>(1)); }
 
 TEST(HoldTrajectoryBuilderTest, HoldsCurrentPositions)
 {

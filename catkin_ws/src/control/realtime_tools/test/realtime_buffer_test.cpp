@@ -24,12 +24,12 @@ TEST(RealtimeBuffer, DefaultConstructedValue)
 TEST(RealtimeBuffer, WriteIsSeenByBothReaders)
 {
   RealtimeBuffer<Command> buffer;
-  buffer.writeFromNonRT({1.5, -2.0});
+  buffer.writeFromNonRT({ 1.5, -2.0 });
   EXPECT_EQ(1.5, buffer.readFromNonRT()->lin);
   EXPECT_EQ(1.5, buffer.readFromRT()->lin);
   EXPECT_EQ(-2.0, buffer.readFromRT()->ang);
   EXPECT_EQ(1.5, buffer.readFromNonRT()->lin);  // after the swap the non-RT reader sees it too
-  buffer.writeFromNonRT({3.0, 0.0});
+  buffer.writeFromNonRT({ 3.0, 0.0 });
   EXPECT_EQ(3.0, buffer.readFromRT()->lin);
 }
 
@@ -56,13 +56,15 @@ TEST(RealtimeBuffer, CopyTakesTheNewestValue)
 
 TEST(RealtimeBuffer, ConcurrentWriterNeverTearsAValue)
 {
-  RealtimeBuffer<Command> buffer({0.0, 0.0});
+  RealtimeBuffer<Command> buffer({ 0.0, 0.0 });
   std::atomic<bool> done(false);
-  std::thread writer([&] {
-    for (int i = 1; i <= 20000; ++i)
-      buffer.writeFromNonRT({double(i), -double(i)});
-    done = true;
-  });
+  std::thread writer(
+      [&]
+      {
+        for (int i = 1; i <= 20000; ++i)
+          buffer.writeFromNonRT({ double(i), -double(i) });
+        done = true;
+      });
   double last = 0.0;
   while (!done)
   {

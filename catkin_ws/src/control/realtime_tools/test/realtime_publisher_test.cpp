@@ -12,11 +12,12 @@ TEST(RealtimePublisher, PublishesHandedOverMessages)
   ros::NodeHandle nh("~");
   std::vector<double> received;
   std::mutex mutex;
-  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>(
-      "out", 10, [&](const std_msgs::Float64::ConstPtr& msg) {
-        std::lock_guard<std::mutex> guard(mutex);
-        received.push_back(msg->data);
-      });
+  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>("out", 10,
+                                                        [&](const std_msgs::Float64::ConstPtr& msg)
+                                                        {
+                                                          std::lock_guard<std::mutex> guard(mutex);
+                                                          received.push_back(msg->data);
+                                                        });
   realtime_tools::RealtimePublisher<std_msgs::Float64> pub(nh, "out", 10);
   ros::AsyncSpinner spinner(1);
   spinner.start();

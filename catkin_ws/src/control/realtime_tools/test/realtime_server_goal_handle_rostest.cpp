@@ -23,11 +23,13 @@ class RtGoalHandleTest : public ::testing::Test
 protected:
   RtGoalHandleTest() : nh_("~"), server_(nh_, "action", false), client_(nh_, "action", false), spinner_(2)
   {
-    server_.registerGoalCallback([this](Server::GoalHandle gh) {
-      gh.setAccepted();
-      std::lock_guard<std::mutex> lock(mutex_);
-      goals_.push_back(gh);
-    });
+    server_.registerGoalCallback(
+        [this](Server::GoalHandle gh)
+        {
+          gh.setAccepted();
+          std::lock_guard<std::mutex> lock(mutex_);
+          goals_.push_back(gh);
+        });
     server_.registerCancelCallback([](Server::GoalHandle) {});
     server_.start();
     spinner_.start();
@@ -56,14 +58,17 @@ protected:
       before = goals_.size();
     }
     client_.sendGoal(goal, Client::SimpleDoneCallback(), Client::SimpleActiveCallback(),
-                     [this](const actionlib::TestFeedbackConstPtr& fb) {
+                     [this](const actionlib::TestFeedbackConstPtr& fb)
+                     {
                        std::lock_guard<std::mutex> lock(mutex_);
                        feedback_.push_back(fb->feedback);
                      });
-    EXPECT_TRUE(waitFor([&] {
-      std::lock_guard<std::mutex> lock(mutex_);
-      return goals_.size() > before;
-    }));
+    EXPECT_TRUE(waitFor(
+        [&]
+        {
+          std::lock_guard<std::mutex> lock(mutex_);
+          return goals_.size() > before;
+        }));
     EXPECT_TRUE(waitFor([&] { return client_.getState() == actionlib::SimpleClientGoalState::ACTIVE; }));
     std::lock_guard<std::mutex> lock(mutex_);
     return goals_.back();
@@ -96,10 +101,12 @@ TEST_F(RtGoalHandleTest, SucceedWithFeedbackAndResult)
   rt->req_succeed_ = false;  // (public as in our API) hold the outcome back to see the feedback alone
   rt->setFeedback(rt->preallocated_feedback_);
   rt->runNonRealtime(ros::TimerEvent());
-  EXPECT_TRUE(waitFor([&] {
-    std::lock_guard<std::mutex> lock(mutex_);
-    return !feedback_.empty();
-  }));
+  EXPECT_TRUE(waitFor(
+      [&]
+      {
+        std::lock_guard<std::mutex> lock(mutex_);
+        return !feedback_.empty();
+      }));
   {
     std::lock_guard<std::mutex> lock(mutex_);
     ASSERT_EQ(1u, feedback_.size());

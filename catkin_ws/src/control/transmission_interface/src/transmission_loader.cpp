@@ -91,8 +91,9 @@ TransmissionSharedPtr loadTransmission(const TransmissionInfo& info, std::string
     }
     if (info.type == FOUR_BAR)
     {
-      error = where + "FourBarLinkageTransmission is not implemented in this re-implementation of "
-                      "transmission_interface (SimpleTransmission and DifferentialTransmission are).";
+      error = where +
+              "FourBarLinkageTransmission is not implemented in this re-implementation of "
+              "transmission_interface (SimpleTransmission and DifferentialTransmission are).";
       return nullptr;
     }
   }

@@ -54,9 +54,9 @@ std::vector<std::string> hardwareInterfaces(const tinyxml2::XMLElement* elem)
     const auto b = name.find_first_not_of(" \t\r\n");
     if (b == std::string::npos)
     {
-      ROS_WARN_STREAM_NAMED("parser", "Skipping empty hardware interface element in '" << elem->Name() << "' "
-                                                                                      << (elem->Attribute("name") ? elem->Attribute("name") : "")
-                                                                                      << "'.");
+      ROS_WARN_STREAM_NAMED("parser", "Skipping empty hardware interface element in '"
+                                          << elem->Name() << "' "
+                                          << (elem->Attribute("name") ? elem->Attribute("name") : "") << "'.");
       continue;
     }
     out.push_back(name.substr(b, name.find_last_not_of(" \t\r\n") - b + 1));
@@ -138,8 +138,8 @@ bool TransmissionParser::parseJoints(const tinyxml2::XMLElement* trans_elem, con
     joint.name = joint_elem->Attribute("name") ? joint_elem->Attribute("name") : "";
     if (joint.name.empty())
     {
-      ROS_ERROR_STREAM_NAMED("parser", "Empty name attribute specified for joint in transmission '"
-                                           << transmission_name << "'.");
+      ROS_ERROR_STREAM_NAMED("parser",
+                             "Empty name attribute specified for joint in transmission '" << transmission_name << "'.");
       continue;
     }
     joint.role = childText(joint_elem, "role");
@@ -189,8 +189,8 @@ bool TransmissionParser::parseActuators(const tinyxml2::XMLElement* trans_elem, 
     actuator.name = act_elem->Attribute("name") ? act_elem->Attribute("name") : "";
     if (actuator.name.empty())
     {
-      ROS_ERROR_STREAM_NAMED("parser", "Empty name attribute specified for actuator in transmission '"
-                                           << transmission_name << "'.");
+      ROS_ERROR_STREAM_NAMED(
+          "parser", "Empty name attribute specified for actuator in transmission '" << transmission_name << "'.");
       continue;
     }
     actuator.role = childText(act_elem, "role");

@@ -138,9 +138,10 @@ TEST(TransmissionLoaderTest, Types)
   EXPECT_DOUBLE_EQ(10.0, std::dynamic_pointer_cast<SimpleTransmission>(simple)->getActuatorReduction());
 
   EXPECT_FALSE(loadTransmission(info("transmission_interface/SimpleTransmission", 1, false), error));
-  EXPECT_EQ("Transmission 't' of type 'transmission_interface/SimpleTransmission': actuator 'a0' has no "
-            "<mechanicalReduction>.",
-            error);
+  EXPECT_EQ(
+      "Transmission 't' of type 'transmission_interface/SimpleTransmission': actuator 'a0' has no "
+      "<mechanicalReduction>.",
+      error);
   EXPECT_FALSE(loadTransmission(info("transmission_interface/SimpleTransmission", 2), error));
   EXPECT_NE(std::string::npos, error.find("exactly one joint and one actuator"));
 

@@ -47,16 +47,14 @@ public:
     bool antiwindup_ = false;
   };
 
-  Pid(double p = 0.0, double i = 0.0, double d = 0.0, double i_max = 0.0, double i_min = -0.0,
-      bool antiwindup = false);
+  Pid(double p = 0.0, double i = 0.0, double d = 0.0, double i_max = 0.0, double i_min = -0.0, bool antiwindup = false);
   Pid(const Pid& source);
   Pid& operator=(const Pid& source);
   ~Pid();
 
   /// Set gains and reset; the NodeHandle variants also start dynamic_reconfigure in "pid".
   void initPid(double p, double i, double d, double i_max, double i_min, const ros::NodeHandle& node);
-  void initPid(double p, double i, double d, double i_max, double i_min, bool antiwindup,
-               const ros::NodeHandle& node);
+  void initPid(double p, double i, double d, double i_max, double i_min, bool antiwindup, const ros::NodeHandle& node);
   void initPid(double p, double i, double d, double i_max, double i_min, bool antiwindup = false);
 
   /// init() in the namespace `prefix`.
@@ -112,7 +110,7 @@ private:
 
   double p_error_last_ = 0.0;  ///< error of the previous computeCommand(error, dt)
   double p_error_ = 0.0;
-  double i_error_ = 0.0;       ///< integral of the error [error*s]
+  double i_error_ = 0.0;  ///< integral of the error [error*s]
   double d_error_ = 0.0;
   double cmd_ = 0.0;
 

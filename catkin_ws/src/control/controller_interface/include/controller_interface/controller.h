@@ -45,9 +45,10 @@ protected:
     T* hw = robot_hw ? robot_hw->get<T>() : nullptr;
     if (!hw)
     {
-      ROS_ERROR("This controller requires a hardware interface of type '%s'. "
-                "Make sure this is registered in the hardware_interface::RobotHW class.",
-                getHardwareInterfaceType().c_str());
+      ROS_ERROR(
+          "This controller requires a hardware interface of type '%s'. "
+          "Make sure this is registered in the hardware_interface::RobotHW class.",
+          getHardwareInterfaceType().c_str());
       return false;
     }
 

@@ -61,9 +61,10 @@ protected:
       std::string list;
       for (const std::string& name : missing)
         list += (list.empty() ? "" : ", ") + name;
-      ROS_ERROR("This controller requires the hardware interface(s) [%s]. "
-                "Make sure they are registered in the hardware_interface::RobotHW class.",
-                list.c_str());
+      ROS_ERROR(
+          "This controller requires the hardware interface(s) [%s]. "
+          "Make sure they are registered in the hardware_interface::RobotHW class.",
+          list.c_str());
       return false;
     }
 

@@ -65,8 +65,8 @@ public:
    * \param timeout [s, controller time] how long to wait for the hardware switch; 0 = no limit
    */
   bool switchController(const std::vector<std::string>& start_controllers,
-                        const std::vector<std::string>& stop_controllers, const int strictness,
-                        bool start_asap = false, double timeout = 0.0);
+                        const std::vector<std::string>& stop_controllers, const int strictness, bool start_asap = false,
+                        double timeout = 0.0);
 
   /// The controller named \p name, nullptr if none is loaded.
   virtual controller_interface::ControllerBase* getControllerByName(const std::string& name);

@@ -89,13 +89,13 @@ private:
 
   Odometry odometry_;
 
-  double wheel_separation_;   ///< [m]
-  double wheel_radius_;       ///< [m]
+  double wheel_separation_;  ///< [m]
+  double wheel_radius_;      ///< [m]
   double wheel_separation_multiplier_;
   double left_wheel_radius_multiplier_;
   double right_wheel_radius_multiplier_;
 
-  double cmd_vel_timeout_;    ///< [s]
+  double cmd_vel_timeout_;  ///< [s]
   bool allow_multiple_cmd_vel_publishers_;
   std::string base_frame_id_;
   std::string odom_frame_id_;
@@ -125,6 +125,12 @@ private:
   bool setOdomPubFields(ros::NodeHandle& root_nh, ros::NodeHandle& controller_nh);
   void reconfCallback(DiffDriveControllerConfig& config, uint32_t level);
   void updateDynamicParams();
+  double readOdometryParams(ros::NodeHandle& controller_nh);
+  void readCommandParams(ros::NodeHandle& controller_nh);
+  void setupWheelStatePublisher(ros::NodeHandle& controller_nh, const std::vector<std::string>& left_wheel_names,
+                                const std::vector<std::string>& right_wheel_names);
+  void setupDynamicReconfigure(ros::NodeHandle& controller_nh, double publish_rate);
+  void publishOdometry(const ros::Time& time);
   void publishWheelData(const ros::Time& time, const ros::Duration& period, const Commands& curr_cmd,
                         double wheel_separation, double left_wheel_radius, double right_wheel_radius);
 };

@@ -12,10 +12,7 @@ class RollingMeanAccumulator
 {
 public:
   /// window_size: number of most recent samples averaged (0 is treated as 1).
-  explicit RollingMeanAccumulator(std::size_t window_size = 10)
-    : buffer_(window_size > 0 ? window_size : 1, 0.0)
-  {
-  }
+  explicit RollingMeanAccumulator(std::size_t window_size = 10) : buffer_(window_size > 0 ? window_size : 1, 0.0) {}
 
   void accumulate(double value)
   {

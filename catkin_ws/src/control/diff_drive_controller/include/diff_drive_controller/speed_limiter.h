@@ -10,10 +10,9 @@ class SpeedLimiter
 public:
   /// Limits: velocity [m/s or rad/s], acceleration [.../s^2], jerk [.../s^3]; each family is
   /// applied only when its has_*_limits flag is set.
-  SpeedLimiter(bool has_velocity_limits = false, bool has_acceleration_limits = false,
-               bool has_jerk_limits = false, double min_velocity = 0.0, double max_velocity = 0.0,
-               double min_acceleration = 0.0, double max_acceleration = 0.0, double min_jerk = 0.0,
-               double max_jerk = 0.0);
+  SpeedLimiter(bool has_velocity_limits = false, bool has_acceleration_limits = false, bool has_jerk_limits = false,
+               double min_velocity = 0.0, double max_velocity = 0.0, double min_acceleration = 0.0,
+               double max_acceleration = 0.0, double min_jerk = 0.0, double max_jerk = 0.0);
 
   /// Limit `v` given the previous command v0 and the one before v1, dt [s] apart.
   /// Returns the limiting factor v_out / v_in (1 when v_in is 0).

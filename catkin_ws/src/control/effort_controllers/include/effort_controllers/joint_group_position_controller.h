@@ -22,8 +22,7 @@ namespace effort_controllers
  * (std_msgs/Float64MultiArray, one position per joint in `joints` order; another size is refused).
  * Starts holding the current positions.
  */
-class JointGroupPositionController
-  : public controller_interface::Controller<hardware_interface::EffortJointInterface>
+class JointGroupPositionController : public controller_interface::Controller<hardware_interface::EffortJointInterface>
 {
 public:
   JointGroupPositionController();

@@ -37,8 +37,8 @@ public:
     if (!internal::getJointHandles(hw, joint_names_, joints_))
       return false;
     commands_buffer_.writeFromNonRT(std::vector<double>(n_joints_, 0.0));
-    sub_command_ = n.subscribe<std_msgs::Float64MultiArray>("command", 1,
-                                                            &ForwardJointGroupCommandController::commandCB, this);
+    sub_command_ =
+        n.subscribe<std_msgs::Float64MultiArray>("command", 1, &ForwardJointGroupCommandController::commandCB, this);
     return true;
   }
 

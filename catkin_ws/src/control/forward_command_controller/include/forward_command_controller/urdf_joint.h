@@ -26,8 +26,7 @@ inline urdf::JointConstSharedPtr getUrdfJoint(const urdf::Model& urdf, const std
     ROS_ERROR("Could not find joint '%s' in urdf", joint_name.c_str());
     return nullptr;
   }
-  if ((joint_urdf->type == urdf::Joint::REVOLUTE || joint_urdf->type == urdf::Joint::PRISMATIC) &&
-      !joint_urdf->limits)
+  if ((joint_urdf->type == urdf::Joint::REVOLUTE || joint_urdf->type == urdf::Joint::PRISMATIC) && !joint_urdf->limits)
   {
     ROS_ERROR("Joint '%s' has no <limit> in the urdf%s", joint_name.c_str(), where.c_str());
     return nullptr;

@@ -21,14 +21,14 @@ struct BridgeJoint
 {
   std::string name;
   JointInterface interface = JointInterface::STATE;
-  double reduction = 1.0;           ///< the first actuator's mechanicalReduction
+  double reduction = 1.0;  ///< the first actuator's mechanicalReduction
   bool has_position_limits = false;
-  double lower = 0.0;               ///< [rad] or [m]
-  double upper = 0.0;               ///< [rad] or [m]
+  double lower = 0.0;  ///< [rad] or [m]
+  double upper = 0.0;  ///< [rad] or [m]
   bool has_effort_limit = false;
-  double effort = 0.0;              ///< [N·m] or [N], > 0
+  double effort = 0.0;  ///< [N·m] or [N], > 0
   bool has_velocity_limit = false;
-  double velocity = 0.0;            ///< [rad/s] or [m/s], > 0
+  double velocity = 0.0;  ///< [rad/s] or [m/s], > 0
 };
 
 /// Parses "EffortJointInterface" or "hardware_interface/EffortJointInterface" (etc.).

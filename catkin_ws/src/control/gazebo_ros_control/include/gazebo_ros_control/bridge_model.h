@@ -25,8 +25,7 @@ public:
   /// effort arrays read as 0). Returns false and says why in *error when a bridge joint
   /// is missing or an array is too short; the previous state is then kept.
   bool setState(const std::vector<std::string>& names, const std::vector<double>& position,
-                const std::vector<double>& velocity, const std::vector<double>& effort,
-                std::string* error);
+                const std::vector<double>& velocity, const std::vector<double>& effort, std::string* error);
 
   /// Takes the state of every joint in joints() order (arrays of size()).
   void setState(const double* position, const double* velocity, const double* effort);
@@ -43,8 +42,8 @@ public:
 private:
   std::vector<BridgeJoint> joints_;
   std::vector<double> position_, velocity_, effort_, command_;
-  std::vector<std::string> last_names_;      ///< names of the last state, for the fast path
-  std::vector<std::size_t> index_;           ///< bridge joint j -> index in the message
+  std::vector<std::string> last_names_;  ///< names of the last state, for the fast path
+  std::vector<std::size_t> index_;       ///< bridge joint j -> index in the message
 };
 
 }  // namespace gazebo_ros_control

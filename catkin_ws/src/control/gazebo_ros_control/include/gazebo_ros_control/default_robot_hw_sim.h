@@ -21,8 +21,7 @@ namespace gazebo_ros_control
 class DefaultRobotHWSim : public RobotHWSim
 {
 public:
-  bool initSim(const std::string& robot_namespace, ros::NodeHandle model_nh,
-               BridgeModel* parent_model) override;
+  bool initSim(const std::string& robot_namespace, ros::NodeHandle model_nh, BridgeModel* parent_model) override;
   void readSim(ros::Time time, ros::Duration period) override;
   void writeSim(ros::Time time, ros::Duration period) override;
   void eStopActive(const bool active) override;

@@ -30,8 +30,8 @@ class GazeboRosControlNode
 public:
   struct Options
   {
-    std::string estop_topic;      ///< relative to NS; empty = no e-stop
-    int parent_pid = 0;           ///< exit when this process is no longer the parent (0: never)
+    std::string estop_topic;        ///< relative to NS; empty = no e-stop
+    int parent_pid = 0;             ///< exit when this process is no longer the parent (0: never)
     double wait_for_joints = 30.0;  ///< [s, wall] to wait for NS/ode_sim/joints
     /// inside the simulator's process: no bridge topics, the simulator calls stepDirect()
     /// every control period; the services get an AsyncSpinner of their own from init()
@@ -48,8 +48,8 @@ public:
   void run();
 
   /// Parses NS/ode_sim/joints. Errors name `param` and the entry.
-  static bool parseJoints(XmlRpc::XmlRpcValue& value, const std::string& param,
-                          std::vector<BridgeJoint>* joints, std::string* error);
+  static bool parseJoints(XmlRpc::XmlRpcValue& value, const std::string& param, std::vector<BridgeJoint>* joints,
+                          std::string* error);
 
   /// One control period: state in, controllers, command out (also used by tests).
   void stateCallback(const sensor_msgs::JointStateConstPtr& msg);
@@ -84,7 +84,7 @@ private:
 
   ros::Time last_update_;
   bool have_last_update_ = false;
-  std::atomic<bool> e_stop_active_{false};
+  std::atomic<bool> e_stop_active_{ false };
   bool last_e_stop_active_ = false;
   unsigned long bad_states_ = 0;
 };

@@ -25,8 +25,7 @@ public:
   /// @param robot_namespace the plugin's namespace (NS)
   /// @param model_nh a NodeHandle in NS
   /// @param parent_model the bridge; must outlive this object
-  virtual bool initSim(const std::string& robot_namespace, ros::NodeHandle model_nh,
-                       BridgeModel* parent_model) = 0;
+  virtual bool initSim(const std::string& robot_namespace, ros::NodeHandle model_nh, BridgeModel* parent_model) = 0;
 
   /// Copies the state of time `time` from the model into the joint handles' data.
   virtual void readSim(ros::Time time, ros::Duration period) = 0;

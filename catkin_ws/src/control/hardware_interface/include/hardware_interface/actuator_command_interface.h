@@ -22,8 +22,16 @@ public:
       throw HardwareInterfaceException("Cannot create handle '" + as.getName() + "'. Command data pointer is null.");
   }
 
-  void setCommand(double command) { assert(cmd_); *cmd_ = command; }
-  double getCommand() const { assert(cmd_); return *cmd_; }
+  void setCommand(double command)
+  {
+    assert(cmd_);
+    *cmd_ = command;
+  }
+  double getCommand() const
+  {
+    assert(cmd_);
+    return *cmd_;
+  }
   double* getCommandPtr() { return cmd_; }
 
 private:

@@ -27,9 +27,21 @@ public:
   }
 
   std::string getName() const { return name_; }
-  double getPosition() const { assert(pos_); return *pos_; }
-  double getVelocity() const { assert(vel_); return *vel_; }
-  double getEffort() const { assert(eff_); return *eff_; }
+  double getPosition() const
+  {
+    assert(pos_);
+    return *pos_;
+  }
+  double getVelocity() const
+  {
+    assert(vel_);
+    return *vel_;
+  }
+  double getEffort() const
+  {
+    assert(eff_);
+    return *eff_;
+  }
   const double* getPositionPtr() const { return pos_; }
   const double* getVelocityPtr() const { return vel_; }
   const double* getEffortPtr() const { return eff_; }

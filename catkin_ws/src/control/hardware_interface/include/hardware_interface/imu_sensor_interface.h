@@ -29,9 +29,9 @@ public:
     std::string frame_id;
     double* orientation;
     double* orientation_covariance;
-    double* angular_velocity;             ///< [rad/s]
+    double* angular_velocity;  ///< [rad/s]
     double* angular_velocity_covariance;
-    double* linear_acceleration;          ///< [m/s²]
+    double* linear_acceleration;  ///< [m/s²]
     double* linear_acceleration_covariance;
   };
 

@@ -22,9 +22,21 @@ public:
       throw HardwareInterfaceException("Cannot create handle '" + js.getName() + "'. Command data pointer is null.");
   }
 
-  void setCommand(double command) { assert(cmd_); *cmd_ = command; }
-  double getCommand() const { assert(cmd_); return *cmd_; }
-  const double* getCommandPtr() const { assert(cmd_); return cmd_; }
+  void setCommand(double command)
+  {
+    assert(cmd_);
+    *cmd_ = command;
+  }
+  double getCommand() const
+  {
+    assert(cmd_);
+    return *cmd_;
+  }
+  const double* getCommandPtr() const
+  {
+    assert(cmd_);
+    return cmd_;
+  }
 
 private:
   double* cmd_ = nullptr;

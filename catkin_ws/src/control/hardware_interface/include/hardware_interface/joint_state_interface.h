@@ -33,7 +33,8 @@ public:
     : JointStateHandle(name, pos, vel, eff)
   {
     if (!absolute_pos)
-      throw HardwareInterfaceException("Cannot create handle '" + name + "'. Absolute encoder position data pointer is null.");
+      throw HardwareInterfaceException("Cannot create handle '" + name +
+                                       "'. Absolute encoder position data pointer is null.");
     absolute_pos_ = absolute_pos;
   }
 
@@ -58,9 +59,21 @@ public:
   }
 
   std::string getName() const { return name_; }
-  double getPosition() const { assert(pos_); return *pos_; }
-  double getVelocity() const { assert(vel_); return *vel_; }
-  double getEffort() const { assert(eff_); return *eff_; }
+  double getPosition() const
+  {
+    assert(pos_);
+    return *pos_;
+  }
+  double getVelocity() const
+  {
+    assert(vel_);
+    return *vel_;
+  }
+  double getEffort() const
+  {
+    assert(eff_);
+    return *eff_;
+  }
 
   double getAbsolutePosition() const
   {

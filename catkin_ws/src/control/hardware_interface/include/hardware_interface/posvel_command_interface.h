@@ -32,10 +32,26 @@ public:
     setCommandPosition(cmd_pos);
     setCommandVelocity(cmd_vel);
   }
-  void setCommandPosition(double cmd_pos) { assert(cmd_pos_); *cmd_pos_ = cmd_pos; }
-  void setCommandVelocity(double cmd_vel) { assert(cmd_vel_); *cmd_vel_ = cmd_vel; }
-  double getCommandPosition() const { assert(cmd_pos_); return *cmd_pos_; }
-  double getCommandVelocity() const { assert(cmd_vel_); return *cmd_vel_; }
+  void setCommandPosition(double cmd_pos)
+  {
+    assert(cmd_pos_);
+    *cmd_pos_ = cmd_pos;
+  }
+  void setCommandVelocity(double cmd_vel)
+  {
+    assert(cmd_vel_);
+    *cmd_vel_ = cmd_vel;
+  }
+  double getCommandPosition() const
+  {
+    assert(cmd_pos_);
+    return *cmd_pos_;
+  }
+  double getCommandVelocity() const
+  {
+    assert(cmd_vel_);
+    return *cmd_vel_;
+  }
 
 private:
   double* cmd_pos_ = nullptr;

@@ -32,8 +32,16 @@ public:
     setCommandVelocity(cmd_vel);
     setCommandAcceleration(cmd_acc);
   }
-  void setCommandAcceleration(double cmd_acc) { assert(cmd_acc_); *cmd_acc_ = cmd_acc; }
-  double getCommandAcceleration() const { assert(cmd_acc_); return *cmd_acc_; }
+  void setCommandAcceleration(double cmd_acc)
+  {
+    assert(cmd_acc_);
+    *cmd_acc_ = cmd_acc;
+  }
+  double getCommandAcceleration() const
+  {
+    assert(cmd_acc_);
+    return *cmd_acc_;
+  }
 
 private:
   double* cmd_acc_ = nullptr;

@@ -67,8 +67,7 @@ public:
   }
 
   /// Realtime: perform the hardware mode switch for the controllers being started/stopped.
-  virtual void doSwitch(const std::list<ControllerInfo>& /*start_list*/,
-                        const std::list<ControllerInfo>& /*stop_list*/)
+  virtual void doSwitch(const std::list<ControllerInfo>& /*start_list*/, const std::list<ControllerInfo>& /*stop_list*/)
   {
   }
 

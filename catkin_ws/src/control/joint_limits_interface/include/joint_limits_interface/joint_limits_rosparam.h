@@ -39,8 +39,8 @@ inline bool getJointLimitsNodeHandle(const std::string& joint_name, const ros::N
  * One "has_<kind>_limits" + "<max_name>" pair: has_...=false clears the flag; has_...=true sets
  * flag and value only when the value is given too. Without has_... the limit is left unchanged.
  */
-inline void getOneSidedLimit(const ros::NodeHandle& limits_nh, const std::string& has_name,
-                             const std::string& max_name, bool& has_limit, double& max_value)
+inline void getOneSidedLimit(const ros::NodeHandle& limits_nh, const std::string& has_name, const std::string& max_name,
+                             bool& has_limit, double& max_value)
 {
   bool has = false;
   if (!limits_nh.getParam(has_name, has))
@@ -99,11 +99,10 @@ inline bool getJointLimits(const std::string& joint_name, const ros::NodeHandle&
 
   internal::getOneSidedLimit(limits_nh, "has_velocity_limits", "max_velocity", limits.has_velocity_limits,
                              limits.max_velocity);
-  internal::getOneSidedLimit(limits_nh, "has_acceleration_limits", "max_acceleration",
-                             limits.has_acceleration_limits, limits.max_acceleration);
+  internal::getOneSidedLimit(limits_nh, "has_acceleration_limits", "max_acceleration", limits.has_acceleration_limits,
+                             limits.max_acceleration);
   internal::getOneSidedLimit(limits_nh, "has_jerk_limits", "max_jerk", limits.has_jerk_limits, limits.max_jerk);
-  internal::getOneSidedLimit(limits_nh, "has_effort_limits", "max_effort", limits.has_effort_limits,
-                             limits.max_effort);
+  internal::getOneSidedLimit(limits_nh, "has_effort_limits", "max_effort", limits.has_effort_limits, limits.max_effort);
   return true;
 }
 
@@ -113,8 +112,7 @@ inline bool getJointLimits(const std::string& joint_name, const ros::NodeHandle&
  * \return true only if has_soft_limits is true and all four values are given (then \p soft_limits
  * is filled); otherwise false and \p soft_limits is unchanged.
  */
-inline bool getSoftJointLimits(const std::string& joint_name, const ros::NodeHandle& nh,
-                               SoftJointLimits& soft_limits)
+inline bool getSoftJointLimits(const std::string& joint_name, const ros::NodeHandle& nh, SoftJointLimits& soft_limits)
 {
   ros::NodeHandle limits_nh;
   if (!internal::getJointLimitsNodeHandle(joint_name, nh, limits_nh))

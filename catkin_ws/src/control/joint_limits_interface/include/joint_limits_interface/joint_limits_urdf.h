@@ -21,8 +21,7 @@ inline bool getJointLimits(urdf::JointConstSharedPtr urdf_joint, JointLimits& li
   if (!urdf_joint || !urdf_joint->limits)
     return false;
 
-  limits.has_position_limits =
-      urdf_joint->type == urdf::Joint::REVOLUTE || urdf_joint->type == urdf::Joint::PRISMATIC;
+  limits.has_position_limits = urdf_joint->type == urdf::Joint::REVOLUTE || urdf_joint->type == urdf::Joint::PRISMATIC;
   if (limits.has_position_limits)
   {
     limits.min_position = urdf_joint->limits->lower;

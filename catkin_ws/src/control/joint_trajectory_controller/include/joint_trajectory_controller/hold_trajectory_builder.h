@@ -18,8 +18,8 @@ private:
   using Segment = JointTrajectorySegment<SegmentImpl>;
   using TrajectoryPerJoint = std::vector<Segment>;
   using Trajectory = std::vector<TrajectoryPerJoint>;
-  using RealtimeGoalHandlePtr = boost::shared_ptr<
-      realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction>>;
+  using RealtimeGoalHandlePtr =
+      boost::shared_ptr<realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction>>;
   using JointHandle = typename HardwareInterface::ResourceHandleType;
 
 public:

@@ -69,8 +69,8 @@ inline void sampleJointTrajectory(const SegmentsOfJoint<Segment>& traj, double t
  * repeated names, or on a partial set of joints when \p allow_partial_joints_goal is false.
  */
 inline std::vector<unsigned int> mapJoints(const std::vector<std::string>& msg_joints,
-                                           const std::vector<std::string>& joint_names,
-                                           bool allow_partial_joints_goal, TrajectoryError& error)
+                                           const std::vector<std::string>& joint_names, bool allow_partial_joints_goal,
+                                           TrajectoryError& error)
 {
   std::vector<unsigned int> mapping;
   const int invalid_joints = control_msgs::FollowJointTrajectoryResult::INVALID_JOINTS;
@@ -108,12 +108,11 @@ inline bool isValid(const trajectory_msgs::JointTrajectory& msg, TrajectoryError
   {
     const trajectory_msgs::JointTrajectoryPoint& p = msg.points[k];
     if (p.positions.size() != n || (!p.velocities.empty() && p.velocities.size() != n) ||
-        (!p.accelerations.empty() && p.accelerations.size() != n) ||
-        (!p.accelerations.empty() && p.velocities.empty()))
+        (!p.accelerations.empty() && p.accelerations.size() != n) || (!p.accelerations.empty() && p.velocities.empty()))
     {
       std::ostringstream os;
-      os << "Invalid trajectory point " << k << ": it must have " << n
-         << " positions, and either no or " << n << " velocities and accelerations (accelerations only with velocities).";
+      os << "Invalid trajectory point " << k << ": it must have " << n << " positions, and either no or " << n
+         << " velocities and accelerations (accelerations only with velocities).";
       error.error_code = invalid_goal;
       error.error_string = os.str();
       return false;
@@ -149,10 +148,10 @@ struct UpdateJointTrajectoryOptions
 {
   typedef typename Segment::Scalar Scalar;
   const SegmentsPerJoint<Segment>* current_trajectory = nullptr;  ///< the trajectory being followed (required)
-  const std::vector<std::string>* joint_names = nullptr;    ///< the controller's joints (required)
-  const std::vector<bool>* angle_wraparound = nullptr;      ///< per joint: continuous (optional)
-  GoalTrackerPtr goal;                                      ///< goal the new segments belong to (optional)
-  const SegmentTolerances<Scalar>* tolerances = nullptr;    ///< tolerances of the new segments (optional)
+  const std::vector<std::string>* joint_names = nullptr;          ///< the controller's joints (required)
+  const std::vector<bool>* angle_wraparound = nullptr;            ///< per joint: continuous (optional)
+  GoalTrackerPtr goal;                                            ///< goal the new segments belong to (optional)
+  const SegmentTolerances<Scalar>* tolerances = nullptr;          ///< tolerances of the new segments (optional)
   bool allow_partial_joints_goal = false;
 };
 
@@ -167,7 +166,8 @@ struct UpdateJointTrajectoryOptions
  */
 template <class Segment>
 SegmentsPerJoint<Segment> updateJointTrajectory(const trajectory_msgs::JointTrajectory& msg, const ros::Time& time,
-                                          const UpdateJointTrajectoryOptions<Segment>& options, TrajectoryError& error)
+                                                const UpdateJointTrajectoryOptions<Segment>& options,
+                                                TrajectoryError& error)
 {
   typedef typename Segment::State State;
   const std::vector<std::string>& joint_names = *options.joint_names;
@@ -213,8 +213,7 @@ SegmentsPerJoint<Segment> updateJointTrajectory(const trajectory_msgs::JointTraj
     State last_curr_state;
     sampleJointTrajectory<Segment>(curr, last_curr_time, last_curr_state);
     const bool wrap = options.angle_wraparound && (*options.angle_wraparound)[j];
-    const double offset =
-        wraparoundJointOffset(last_curr_state.position[0], msg.points[first].positions[k], wrap);
+    const double offset = wraparoundJointOffset(last_curr_state.position[0], msg.points[first].positions[k], wrap);
 
     SegmentTolerancesPerJoint<typename Segment::Scalar> tols;
     if (options.tolerances)
@@ -257,8 +256,9 @@ SegmentsPerJoint<Segment> updateJointTrajectory(const trajectory_msgs::JointTraj
  * \p stop_duration <= 0, at \p actual_positions at once.
  */
 template <class Segment>
-SegmentsPerJoint<Segment> holdTrajectory(const SegmentsPerJoint<Segment>* current, const std::vector<double>& actual_positions,
-                                   double time, double stop_duration, const GoalTrackerPtr& goal = GoalTrackerPtr())
+SegmentsPerJoint<Segment> holdTrajectory(const SegmentsPerJoint<Segment>* current,
+                                         const std::vector<double>& actual_positions, double time, double stop_duration,
+                                         const GoalTrackerPtr& goal = GoalTrackerPtr())
 {
   typedef typename Segment::State State;
   const std::size_t n_joints = actual_positions.size();
@@ -435,8 +435,9 @@ inline void initFailed(const Options& options, const std::string& what, bool deb
  * \throw std::invalid_argument If a point's positions, velocities and accelerations disagree in size.
  */
 template <class Trajectory>
-Trajectory initJointTrajectory(const trajectory_msgs::JointTrajectory& msg, const ros::Time& time,
-                               const InitJointTrajectoryOptions<Trajectory>& options = InitJointTrajectoryOptions<Trajectory>())
+Trajectory initJointTrajectory(
+    const trajectory_msgs::JointTrajectory& msg, const ros::Time& time,
+    const InitJointTrajectoryOptions<Trajectory>& options = InitJointTrajectoryOptions<Trajectory>())
 {
   typedef typename Trajectory::value_type TrajectoryPerJoint;
   typedef typename TrajectoryPerJoint::value_type Segment;
@@ -477,8 +478,9 @@ Trajectory initJointTrajectory(const trajectory_msgs::JointTrajectory& msg, cons
 
   if (has_angle_wraparound && options.angle_wraparound->size() != joint_names.size())
   {
-    internal::initFailed(options, "Cannot create trajectory from message. "
-                                  "Vector specifying whether joints wrap around has an invalid size.");
+    internal::initFailed(options,
+                         "Cannot create trajectory from message. "
+                         "Vector specifying whether joints wrap around has an invalid size.");
     return Trajectory();
   }
   if (!options.allow_partial_joints_goal && msg.joint_names.size() != joint_names.size())
@@ -494,8 +496,9 @@ Trajectory initJointTrajectory(const trajectory_msgs::JointTrajectory& msg, cons
   }
   if (has_current_trajectory && options.current_trajectory->size() != joint_names.size())
   {
-    internal::initFailed(options, "Cannot create trajectory from message. "
-                                  "The current trajectory does not have one entry per expected joint.");
+    internal::initFailed(options,
+                         "Cannot create trajectory from message. "
+                         "The current trajectory does not have one entry per expected joint.");
     return Trajectory();
   }
 

@@ -100,9 +100,10 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
     }
     catch (const hardware_interface::HardwareInterfaceException& e)
     {
-      ROS_ERROR_STREAM_NAMED(name_, "Could not find joint '" << joint_names_[i] << "' in '"
-                                                             << hardware_interface::internal::demangledTypeName<HardwareInterface>()
-                                                             << "': " << e.what());
+      ROS_ERROR_STREAM_NAMED(name_, "Could not find joint '"
+                                        << joint_names_[i] << "' in '"
+                                        << hardware_interface::internal::demangledTypeName<HardwareInterface>()
+                                        << "': " << e.what());
       return false;
     }
   }
@@ -136,8 +137,8 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
   desired_joint_state_ = State(1);
   hold_state_ = State(1);
 
-  state_publisher_.reset(new realtime_tools::RealtimePublisher<control_msgs::JointTrajectoryControllerState>(
-      controller_nh_, "state", 1));
+  state_publisher_.reset(
+      new realtime_tools::RealtimePublisher<control_msgs::JointTrajectoryControllerState>(controller_nh_, "state", 1));
   {
     control_msgs::JointTrajectoryControllerState& m = state_publisher_->msg_;
     state_publisher_->lock();
@@ -158,21 +159,21 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
 
   trajectory_command_sub_ =
       controller_nh_.subscribe("command", 1, &JointTrajectoryController::trajectoryCommandCB, this);
-  action_server_.reset(new ActionServer(controller_nh_, "follow_joint_trajectory",
-                                        [this](GoalHandle gh) { goalCB(gh); },
-                                        [this](GoalHandle gh) { cancelCB(gh); }, false));
+  action_server_.reset(new ActionServer(
+      controller_nh_, "follow_joint_trajectory", [this](GoalHandle gh) { goalCB(gh); },
+      [this](GoalHandle gh) { cancelCB(gh); }, false));
   action_server_->start();
   query_state_service_ =
       controller_nh_.advertiseService("query_state", &JointTrajectoryController::queryStateService, this);
-  goal_handle_timer_ = controller_nh_.createTimer(ros::Duration(action_monitor_period_),
-                                                  &JointTrajectoryController::monitorGoals, this);
+  goal_handle_timer_ =
+      controller_nh_.createTimer(ros::Duration(action_monitor_period_), &JointTrajectoryController::monitorGoals, this);
 
   std::ostringstream joints_list;
   for (unsigned int i = 0; i < n_joints; ++i)
     joints_list << (i ? ", " : "") << joint_names_[i] << (angle_wraparound_[i] ? " (continuous)" : "");
-  ROS_DEBUG_STREAM_NAMED(name_, "Initialized controller '" << name_ << "' with " << n_joints << " joints: "
-                                                           << joints_list.str() << "; stop_trajectory_duration "
-                                                           << stop_trajectory_duration_ << " s.");
+  ROS_DEBUG_STREAM_NAMED(name_, "Initialized controller '"
+                                    << name_ << "' with " << n_joints << " joints: " << joints_list.str()
+                                    << "; stop_trajectory_duration " << stop_trajectory_duration_ << " s.");
   return true;
 }
 
@@ -218,7 +219,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::stopping(const r
 
 template <class SegmentImpl, class HardwareInterface>
 void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros::Time& time,
-                                                                      const ros::Duration& period)
+                                                                       const ros::Duration& period)
 {
   last_update_nsec_.store(time.toNSec());
   TrajectoryPtr traj_ptr = currentTrajectory();
@@ -241,9 +242,9 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
     desired_state_.position[i] = desired_joint_state_.position[0];
     desired_state_.velocity[i] = desired_joint_state_.velocity[0];
     desired_state_.acceleration[i] = desired_joint_state_.acceleration[0];
-    state_error_.position[i] = angle_wraparound_[i] ?
-                                   angles::shortest_angular_distance(current_state_.position[i], desired_state_.position[i]) :
-                                   desired_state_.position[i] - current_state_.position[i];
+    state_error_.position[i] =
+        angle_wraparound_[i] ? angles::shortest_angular_distance(current_state_.position[i], desired_state_.position[i])
+                             : desired_state_.position[i] - current_state_.position[i];
     state_error_.velocity[i] = desired_state_.velocity[i] - current_state_.velocity[i];
     state_error_.acceleration[i] = 0.0;
 
@@ -305,7 +306,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
 
 template <class SegmentImpl, class HardwareInterface>
 void JointTrajectoryController<SegmentImpl, HardwareInterface>::setHoldPosition(const ros::Time& time,
-                                                                               const GoalTrackerPtr& goal)
+                                                                                const GoalTrackerPtr& goal)
 {
   std::vector<double> actual(joints_.size());
   for (unsigned int i = 0; i < joints_.size(); ++i)
@@ -328,8 +329,8 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::setHoldPosition(
 
 template <class SegmentImpl, class HardwareInterface>
 bool JointTrajectoryController<SegmentImpl, HardwareInterface>::updateTrajectoryCommand(
-    const trajectory_msgs::JointTrajectory& msg, const GoalTrackerPtr& goal, const SegmentTolerances<Scalar>& tolerances,
-    TrajectoryError& error)
+    const trajectory_msgs::JointTrajectory& msg, const GoalTrackerPtr& goal,
+    const SegmentTolerances<Scalar>& tolerances, TrajectoryError& error)
 {
   if (!this->isRunning())
   {

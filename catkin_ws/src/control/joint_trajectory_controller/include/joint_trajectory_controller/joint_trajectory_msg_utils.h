@@ -71,8 +71,8 @@ inline bool isTimeStrictlyIncreasing(const trajectory_msgs::JointTrajectory& msg
  * \brief The last point of \p msg reached at or before \p time (the message starting at its
  * stamp, or at \p time if the stamp is zero); points.end() if every point comes later.
  */
-inline std::vector<trajectory_msgs::JointTrajectoryPoint>::const_iterator
-findPoint(const trajectory_msgs::JointTrajectory& msg, const ros::Time& time)
+inline std::vector<trajectory_msgs::JointTrajectoryPoint>::const_iterator findPoint(
+    const trajectory_msgs::JointTrajectory& msg, const ros::Time& time)
 {
   const internal::IsBeforePoint before(internal::startTime(msg, time));
   const auto first = msg.points.begin(), last = msg.points.end();

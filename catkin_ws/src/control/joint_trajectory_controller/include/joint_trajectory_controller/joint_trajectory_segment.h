@@ -41,8 +41,7 @@ public:
     FINISHED = 3
   };
 
-  GoalTracker(GoalHandle gh, const std::vector<bool>& joints)
-    : Base(gh), joints_(joints), successful_(joints.size(), 0)
+  GoalTracker(GoalHandle gh, const std::vector<bool>& joints) : Base(gh), joints_(joints), successful_(joints.size(), 0)
   {
   }
 
@@ -127,7 +126,6 @@ private:
 
 typedef boost::shared_ptr<GoalTracker> GoalTrackerPtr;
 
-
 /**
  * \brief One joint's trajectory segment (\p Segment, e.g. trajectory_interface::QuinticSplineSegment)
  * with the (realtime) goal handle it belongs to, the tolerances it must be followed with and an
@@ -195,8 +193,9 @@ public:
         if (index >= dim)
           throw std::invalid_argument("Permutation vector contains out-of-range indices.");
       if (!position_offset.empty() && position_offset.size() != dim)
-        throw std::invalid_argument("Size mismatch between trajectory point "
-                                    "and vector specifying whether joints wrap around.");
+        throw std::invalid_argument(
+            "Size mismatch between trajectory point "
+            "and vector specifying whether joints wrap around.");
       this->position.clear();
       this->velocity.clear();
       this->acceleration.clear();

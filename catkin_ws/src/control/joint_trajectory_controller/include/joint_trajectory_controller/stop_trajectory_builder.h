@@ -22,8 +22,8 @@ private:
   using Segment = JointTrajectorySegment<SegmentImpl>;
   using TrajectoryPerJoint = std::vector<Segment>;
   using Trajectory = std::vector<TrajectoryPerJoint>;
-  using RealtimeGoalHandlePtr = boost::shared_ptr<
-      realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction>>;
+  using RealtimeGoalHandlePtr =
+      boost::shared_ptr<realtime_tools::RealtimeServerGoalHandle<control_msgs::FollowJointTrajectoryAction>>;
 
 public:
   /// \p hold_state (one entry per joint) is referenced, not copied: it must outlive the builder.

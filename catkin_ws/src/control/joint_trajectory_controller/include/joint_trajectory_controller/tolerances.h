@@ -15,8 +15,7 @@ namespace joint_trajectory_controller
 template <class Scalar>
 struct StateTolerances
 {
-  StateTolerances(Scalar position_tolerance = 0.0, Scalar velocity_tolerance = 0.0,
-                  Scalar acceleration_tolerance = 0.0)
+  StateTolerances(Scalar position_tolerance = 0.0, Scalar velocity_tolerance = 0.0, Scalar acceleration_tolerance = 0.0)
     : position(position_tolerance), velocity(velocity_tolerance), acceleration(acceleration_tolerance)
   {
   }
@@ -57,10 +56,10 @@ inline bool checkStateToleranceAt(const State& state_error, const StateTolerance
                                   unsigned int index)
 {
   using std::abs;
-  const bool pos_ok = !(tol.position > 0.0) || state_error.position.size() <= index ||
-                      abs(state_error.position[index]) <= tol.position;
-  const bool vel_ok = !(tol.velocity > 0.0) || state_error.velocity.size() <= index ||
-                      abs(state_error.velocity[index]) <= tol.velocity;
+  const bool pos_ok =
+      !(tol.position > 0.0) || state_error.position.size() <= index || abs(state_error.position[index]) <= tol.position;
+  const bool vel_ok =
+      !(tol.velocity > 0.0) || state_error.velocity.size() <= index || abs(state_error.velocity[index]) <= tol.velocity;
   const bool acc_ok = !(tol.acceleration > 0.0) || state_error.acceleration.size() <= index ||
                       abs(state_error.acceleration[index]) <= tol.acceleration;
   return pos_ok && vel_ok && acc_ok;
@@ -103,7 +102,8 @@ inline bool checkStateTolerance(const State& state_error,
 template <class Scalar>
 inline void updateStateTolerances(const control_msgs::JointTolerance& tol_msg, StateTolerances<Scalar>& tols)
 {
-  auto apply = [](double value, Scalar& out) {
+  auto apply = [](double value, Scalar& out)
+  {
     if (value > 0.0)
       out = static_cast<Scalar>(value);
     else if (value < 0.0)

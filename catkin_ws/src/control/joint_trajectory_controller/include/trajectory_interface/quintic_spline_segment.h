@@ -28,8 +28,7 @@ public:
 
   QuinticSplineSegment() = default;
 
-  QuinticSplineSegment(const Time& start_time, const State& start_state, const Time& end_time,
-                       const State& end_state)
+  QuinticSplineSegment(const Time& start_time, const State& start_state, const Time& end_time, const State& end_state)
   {
     init(start_time, start_state, end_time, end_state);
   }
@@ -77,7 +76,8 @@ public:
         c[2] = a0 / Scalar(2);
         c[3] = (Scalar(20) * (p1 - p0) - (Scalar(8) * v1 + Scalar(12) * v0) * T - (Scalar(3) * a0 - a1) * T2) /
                (Scalar(2) * T3);
-        c[4] = (Scalar(30) * (p0 - p1) + (Scalar(14) * v1 + Scalar(16) * v0) * T + (Scalar(3) * a0 - Scalar(2) * a1) * T2) /
+        c[4] = (Scalar(30) * (p0 - p1) + (Scalar(14) * v1 + Scalar(16) * v0) * T +
+                (Scalar(3) * a0 - Scalar(2) * a1) * T2) /
                (Scalar(2) * T4);
         c[5] = (Scalar(12) * (p1 - p0) - Scalar(6) * (v1 + v0) * T - (a0 - a1) * T2) / (Scalar(2) * T5);
       }
@@ -127,8 +127,10 @@ public:
       }
       const Scalar s = t;
       state.position[i] = ((((c[5] * s + c[4]) * s + c[3]) * s + c[2]) * s + c[1]) * s + c[0];
-      state.velocity[i] = (((Scalar(5) * c[5] * s + Scalar(4) * c[4]) * s + Scalar(3) * c[3]) * s + Scalar(2) * c[2]) * s + c[1];
-      state.acceleration[i] = ((Scalar(20) * c[5] * s + Scalar(12) * c[4]) * s + Scalar(6) * c[3]) * s + Scalar(2) * c[2];
+      state.velocity[i] =
+          (((Scalar(5) * c[5] * s + Scalar(4) * c[4]) * s + Scalar(3) * c[3]) * s + Scalar(2) * c[2]) * s + c[1];
+      state.acceleration[i] =
+          ((Scalar(20) * c[5] * s + Scalar(12) * c[4]) * s + Scalar(6) * c[3]) * s + Scalar(2) * c[2];
     }
   }
 

@@ -24,8 +24,7 @@ public:
   /// The message to fill between trylock()/lock() and unlockAndPublish()/unlock().
   Msg msg_;
 
-  RealtimePublisher(const ros::NodeHandle& node, const std::string& topic, int queue_size,
-                    bool latched = false)
+  RealtimePublisher(const ros::NodeHandle& node, const std::string& topic, int queue_size, bool latched = false)
   {
     init(node, topic, queue_size, latched);
   }
@@ -85,10 +84,7 @@ public:
   }
 
   /// Blocking lock of msg_ (not for the realtime loop).
-  void lock()
-  {
-    msg_mutex_.lock();
-  }
+  void lock() { msg_mutex_.lock(); }
 
   void unlock() { msg_mutex_.unlock(); }
 
@@ -112,17 +108,22 @@ private:
     is_running_ = false;
   }
 
-  enum { REALTIME, NON_REALTIME, LOOP_NOT_STARTED };
+  enum
+  {
+    REALTIME,
+    NON_REALTIME,
+    LOOP_NOT_STARTED
+  };
 
   std::string topic_;
   ros::NodeHandle node_;
   ros::Publisher publisher_;
-  std::atomic<bool> is_running_{false};
-  bool keep_running_{false};
+  std::atomic<bool> is_running_{ false };
+  bool keep_running_{ false };
   std::thread thread_;
   std::mutex msg_mutex_;
   std::condition_variable updated_cond_;
-  std::atomic<int> turn_{LOOP_NOT_STARTED};
+  std::atomic<int> turn_{ LOOP_NOT_STARTED };
 };
 
 template <class Msg>

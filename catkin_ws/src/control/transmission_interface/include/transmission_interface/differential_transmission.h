@@ -24,7 +24,8 @@ public:
     : act_reduction_(actuator_reduction), jnt_reduction_(joint_reduction), jnt_offset_(joint_offset)
   {
     if (act_reduction_.size() != 2 || jnt_reduction_.size() != 2 || jnt_offset_.size() != 2)
-      throw TransmissionInterfaceException("Reduction and offset vectors of a differential transmission must have size 2.");
+      throw TransmissionInterfaceException(
+          "Reduction and offset vectors of a differential transmission must have size 2.");
     for (double r : act_reduction_)
       if (r == 0.0)
         throw TransmissionInterfaceException("Transmission reduction ratios cannot be zero.");
@@ -94,7 +95,8 @@ private:
   static void check(std::size_t n_act, std::size_t n_jnt)
   {
     if (n_act != 2 || n_jnt != 2)
-      throw TransmissionInterfaceException("DifferentialTransmission maps exactly two actuator values to two joint values.");
+      throw TransmissionInterfaceException(
+          "DifferentialTransmission maps exactly two actuator values to two joint values.");
   }
 
   std::vector<double> act_reduction_;

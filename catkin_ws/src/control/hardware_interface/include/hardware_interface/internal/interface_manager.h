@@ -85,8 +85,7 @@ public:
       T* iface = static_cast<T*>(it->second);
       if (!iface)
       {
-        ROS_ERROR_STREAM("Failed reconstructing type T = '" << type_name
-                                                           << "'. This should never happen");
+        ROS_ERROR_STREAM("Failed reconstructing type T = '" << type_name << "'. This should never happen");
         return nullptr;
       }
       iface_list.push_back(iface);
@@ -110,8 +109,9 @@ public:
     T* iface_combo = internal::CheckIsResourceManager<T>::newCI(interface_destruction_list_);
     if (!iface_combo)
     {
-      ROS_ERROR("You cannot register multiple interfaces of the same type which are not of type ResourceManager. "
-                "There is no established protocol for combining them.");
+      ROS_ERROR(
+          "You cannot register multiple interfaces of the same type which are not of type ResourceManager. "
+          "There is no established protocol for combining them.");
       return nullptr;
     }
     internal::CheckIsResourceManager<T>::callConcatManagers(iface_list, iface_combo);

@@ -51,7 +51,7 @@ public:
     else
     {
       ROS_WARN_STREAM("Replacing previously registered handle '" << handle.getName() << "' in '"
-                                                                  << internal::demangledTypeName(*this) << "'.");
+                                                                 << internal::demangledTypeName(*this) << "'.");
       it->second = handle;
     }
   }

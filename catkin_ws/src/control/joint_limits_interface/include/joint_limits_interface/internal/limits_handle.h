@@ -33,9 +33,9 @@ inline std::pair<double, double> softVelocityRange(const JointLimits& limits, co
                                                    double pos, double max_vel)
 {
   if (!limits.has_position_limits)
-    return {-max_vel, max_vel};
-  return {saturate(-soft_limits.k_position * (pos - soft_limits.min_position), -max_vel, max_vel),
-          saturate(-soft_limits.k_position * (pos - soft_limits.max_position), -max_vel, max_vel)};
+    return { -max_vel, max_vel };
+  return { saturate(-soft_limits.k_position * (pos - soft_limits.min_position), -max_vel, max_vel),
+           saturate(-soft_limits.k_position * (pos - soft_limits.max_position), -max_vel, max_vel) };
 }
 
 /// Narrows the velocity range [\p low, \p high] to within max_acceleration·period of the measured
