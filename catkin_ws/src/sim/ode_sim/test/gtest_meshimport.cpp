@@ -34,7 +34,7 @@ TEST(MeshImport, ColladaNodesUnitsAndMaterials) {
   EXPECT_EQ(s.meshes[0].node, "lower");
   EXPECT_EQ(s.meshes[1].node, "upper");
   for (const auto& m : s.meshes) {
-    EXPECT_EQ(m.faces.size(), 36u);                       // 12 triangles
+    EXPECT_EQ(m.faces.size(), 36u);  // 12 triangles
     EXPECT_EQ(m.normals.size(), m.positions.size());
     EXPECT_EQ(m.uvs.size() / 2, m.positions.size() / 3);
   }
@@ -42,7 +42,7 @@ TEST(MeshImport, ColladaNodesUnitsAndMaterials) {
   auto y = range(s.meshes[1], 1);
   EXPECT_NEAR(y.first, 0.0, 1e-6);
   EXPECT_NEAR(y.second, 0.6, 1e-6);
-  auto x = range(s.meshes[0], 0);                        // block translate + node translate
+  auto x = range(s.meshes[0], 0);  // block translate + node translate
   EXPECT_NEAR(x.first, -0.5, 1e-6);
   EXPECT_NEAR(x.second, 0.0, 1e-6);
   const auto& red = s.materials.at(s.meshes[0].material);
@@ -55,7 +55,7 @@ TEST(MeshImport, ColladaNodesUnitsAndMaterials) {
 TEST(MeshImport, ObjWithMtl) {
   const ImportedScene s = importScene(kModels + "prism/meshes/prism.obj");
   ASSERT_EQ(s.meshes.size(), 1u);
-  EXPECT_EQ(s.meshes[0].faces.size(), 24u);             // 2 caps + 3 quads as 8 triangles
+  EXPECT_EQ(s.meshes[0].faces.size(), 24u);  // 2 caps + 3 quads as 8 triangles
   const auto& m = s.materials.at(s.meshes[0].material);
   EXPECT_EQ(m.name, "orange");
   EXPECT_EQ(m.texture, "orange.png");

@@ -28,8 +28,8 @@ Hits castAxes(const RayScene& s, const double o[3], double tmin, double tmax,
               const std::vector<double>& p = {}) {
   const double d[18] = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
   Hits h{std::vector<double>(6), std::vector<int64_t>(6)};
-  s.cast(o, d, 6, true, tmin, tmax, q.data(), p.data(), excluded.empty() ? nullptr : excluded.data(),
-         h.t.data(), h.who.data());
+  s.cast(o, d, 6, true, tmin, tmax, q.data(), p.data(),
+         excluded.empty() ? nullptr : excluded.data(), h.t.data(), h.who.data());
   return h;
 }
 
@@ -57,7 +57,7 @@ TEST(RayScene, DistancesToEachKind) {
   EXPECT_EQ(h.who[1], 2);
   EXPECT_DOUBLE_EQ(h.t[2], 2.5);  // sphere at y = 2.5
   EXPECT_EQ(h.who[2], 1);
-  EXPECT_EQ(h.t[3], kInf);        // nothing towards -y
+  EXPECT_EQ(h.t[3], kInf);  // nothing towards -y
   EXPECT_EQ(h.who[3], -1);
   EXPECT_EQ(h.t[4], kInf);
   EXPECT_DOUBLE_EQ(h.t[5], 1.0);  // the plane below
@@ -78,7 +78,7 @@ TEST(RayScene, InsideReportsTheExitAndRangesBound) {
   const double o[3] = {0, 0, 0};
   h = castAxes(s, o, 2.6, 10.0);  // min range past the box's near face: its far face
   EXPECT_DOUBLE_EQ(h.t[0], 3.5);
-  h = castAxes(s, o, 0.0, 2.5);   // a hit at max range does not count
+  h = castAxes(s, o, 0.0, 2.5);  // a hit at max range does not count
   EXPECT_EQ(h.who[0], -1);
   EXPECT_EQ(h.t[0], kInf);
 }
@@ -95,8 +95,8 @@ TEST(RayScene, ExcludedShapesAreNotSeen) {
 TEST(RayScene, MeshAndTheLowestTriangleWinsATie) {
   // two triangles in the plane x = 2 sharing the edge y = z (a square split along it)
   RayScene s(2);
-  s.setForest({2, -1, -1}, {2, 1, 1}, {0}, {2}, {1}, {2, -1, -1, 2, -1, -1},
-              {0, 2, 0, 0, 2, 2}, {0, 2, 2, 0, 0, 2}, {1, 0});
+  s.setForest({2, -1, -1}, {2, 1, 1}, {0}, {2}, {1}, {2, -1, -1, 2, -1, -1}, {0, 2, 0, 0, 2, 2},
+              {0, 2, 2, 0, 0, 2}, {1, 0});
   s.setMeshes(0, {}, {}, {});
   const double o[3] = {0, 0.5, 0.5};  // through the shared edge: both triangles at t = 2
   const double d[3] = {1, 0, 0};
@@ -139,8 +139,8 @@ int main(int argc, char** argv) {
 }
 
 // A one-origin scan looks only at the items in each ray's azimuth bin: the same hits as the
-// same rays cast one origin per ray (every item tested; to rounding), with boxes around the origin, behind
-// it across the +-pi seam, at a bin's edge, tilted, and rays straight up and down.
+// same rays cast one origin per ray (every item tested; to rounding), with boxes around the origin,
+// behind it across the +-pi seam, at a bin's edge, tilted, and rays straight up and down.
 TEST(RayScene, AzimuthBinsChangeNoHit) {
   const int kItems = 40;
   RayScene s(kItems);
@@ -177,8 +177,7 @@ TEST(RayScene, AzimuthBinsChangeNoHit) {
   std::vector<double> t1(n), t2(n);
   std::vector<int64_t> w1(n), w2(n);
   s.cast(o.data(), d.data(), n, true, 0.05, 20.0, nullptr, nullptr, nullptr, t1.data(), w1.data());
-  s.cast(o.data(), d.data(), n, false, 0.05, 20.0, nullptr, nullptr, nullptr, t2.data(),
-         w2.data());
+  s.cast(o.data(), d.data(), n, false, 0.05, 20.0, nullptr, nullptr, nullptr, t2.data(), w2.data());
   int hits = 0;
   std::vector<int> seen(kItems, 0);
   for (int r = 0; r < n; ++r) {

@@ -49,8 +49,7 @@ class AzimuthBins {
   }
 
   // the items a ray of direction d may enter (all of `order` for a vertical ray)
-  void lookup(const double* d, const std::vector<int>& order, const int*& items,
-              size_t& n) const {
+  void lookup(const double* d, const std::vector<int>& order, const int*& items, size_t& n) const {
     if (d[0] == 0.0 && d[1] == 0.0) {
       items = order.data();
       n = order.size();

@@ -79,7 +79,6 @@ void placeGeom(uintptr_t g, const Vec3& p, const Quat& q, bool offset) {
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
-
   // mesh files through assimp (description/mesh.py): a list of mesh instances (node and mesh
   // name, material index, positions (N,3) float64, normals (N,3) float32, uvs (N,2) float32 or
   // None, faces (M,3) int32) and a list of materials (dicts); RuntimeError: assimp's reason
@@ -133,11 +132,14 @@ PYBIND11_MODULE(_core, m) {
   m.def("set_random_seed", [](unsigned long seed) { dRandSetSeed(seed); });
   // trimesh geoms (engine/compiled.py TriMeshGeom): PyODE 1.2 on Debian has no trimesh, so
   // these geoms are made and placed here, by id
-  m.def("geom_set_body", [](uintptr_t g, uintptr_t b) { dGeomSetBody(as<dGeomID>(g), as<dBodyID>(b)); });
-  m.def("geom_set_offset", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, true); },
-        py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
-  m.def("geom_set_pose", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, false); },
-        py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
+  m.def("geom_set_body",
+        [](uintptr_t g, uintptr_t b) { dGeomSetBody(as<dGeomID>(g), as<dBodyID>(b)); });
+  m.def(
+      "geom_set_offset", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, true); },
+      py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
+  m.def(
+      "geom_set_pose", [](uintptr_t g, Vec3 p, Quat q) { placeGeom(g, p, q, false); },
+      py::arg("geom"), py::arg("position"), py::arg("quaternion_wxyz"));
   m.def("geom_pose", [](uintptr_t g) {
     dGeomID id = as<dGeomID>(g);
     const dReal* p = dGeomGetPosition(id);
@@ -161,9 +163,9 @@ PYBIND11_MODULE(_core, m) {
                      sizeof(dContactGeom));
     py::list out;
     for (int i = 0; i < n; ++i)
-      out.append(py::make_tuple(py::make_tuple(buf[i].pos[0], buf[i].pos[1], buf[i].pos[2]),
-                                py::make_tuple(buf[i].normal[0], buf[i].normal[1], buf[i].normal[2]),
-                                buf[i].depth));
+      out.append(py::make_tuple(
+          py::make_tuple(buf[i].pos[0], buf[i].pos[1], buf[i].pos[2]),
+          py::make_tuple(buf[i].normal[0], buf[i].normal[1], buf[i].normal[2]), buf[i].depth));
     return out;
   });
 
@@ -178,8 +180,10 @@ PYBIND11_MODULE(_core, m) {
            }),
            py::arg("vertices"), py::arg("faces"))
       .def_property_readonly("triangles", &TriMesh::triangles)
-      .def("create", [](const TriMesh& t, uintptr_t space) { return num(t.create(as<dSpaceID>(space))); },
-           py::arg("space"));
+      .def(
+          "create",
+          [](const TriMesh& t, uintptr_t space) { return num(t.create(as<dSpaceID>(space))); },
+          py::arg("space"));
   m.def("ode_config", []() { return std::string(dGetConfiguration()); });
 
   py::class_<Stepper>(m, "Stepper")
@@ -290,7 +294,8 @@ PYBIND11_MODULE(_core, m) {
           const dReal* q = dBodyGetQuaternion(b);
           const dReal* l = dBodyGetLinearVel(b);
           const dReal* a = dBodyGetAngularVel(b);
-          double row[13] = {p[0], p[1], p[2], q[1], q[2], q[3], q[0], l[0], l[1], l[2], a[0], a[1], a[2]};
+          double row[13] = {p[0], p[1], p[2], q[1], q[2], q[3], q[0],
+                            l[0], l[1], l[2], a[0], a[1], a[2]};
           std::copy(row, row + 13, o);
           o += 13;
         }
@@ -357,8 +362,9 @@ PYBIND11_MODULE(_core, m) {
             if (common ? o.size() < 3 : o.size() != 3 * n)
               throw std::invalid_argument("RayScene.cast: origins must be (3,) or (N, 3)");
             if (!r.ready())
-              throw std::invalid_argument("RayScene.cast: the dynamic slots have no link rows "
-                                          "(set_slots)");
+              throw std::invalid_argument(
+                  "RayScene.cast: the dynamic slots have no link rows "
+                  "(set_slots)");
             const py::ssize_t links = r.linkRows();
             if (link_q.size() != 4 * links || link_p.size() != 3 * links)
               throw std::invalid_argument("RayScene.cast: expected the poses of " +
@@ -372,8 +378,8 @@ PYBIND11_MODULE(_core, m) {
             const uint8_t* ex = excluded ? excluded->data() : nullptr;
             {
               py::gil_scoped_release release;
-              r.cast(o.data(), d.data(), n, common, tmin, max_range, link_q.data(),
-                     link_p.data(), ex, tp, wp);
+              r.cast(o.data(), d.data(), n, common, tmin, max_range, link_q.data(), link_p.data(),
+                     ex, tp, wp);
             }
             return py::make_tuple(t, who);
           },

@@ -22,8 +22,7 @@ void copyColor(const aiMaterial* m, const char* key, unsigned type, unsigned idx
   }
 }
 
-void walk(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent,
-          ImportedScene& out) {
+void walk(const aiScene* scene, const aiNode* node, const aiMatrix4x4& parent, ImportedScene& out) {
   const aiMatrix4x4 m = parent * node->mTransformation;
   aiMatrix3x3 nm(m);
   nm.Inverse().Transpose();
@@ -69,7 +68,8 @@ ImportedScene importScene(const std::string& path) {
   Assimp::Importer importer;
   // the up axis is turned to Z by the caller (Gazebo's rule), not to Y as assimp would
   importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
                          aiProcess_SortByPType | aiProcess_GenNormals |
                          aiProcess_ValidateDataStructure;

@@ -21,12 +21,12 @@ struct ImportedMaterial {
   bool has_diffuse = false, has_ambient = false, has_emissive = false, has_specular = false;
   double opacity = 1.0;  // 1 opaque
   double shininess = 0.0;
-  std::string texture;   // diffuse texture as written in the file ('' none; '*N' embedded)
+  std::string texture;  // diffuse texture as written in the file ('' none; '*N' embedded)
 };
 
 struct ImportedMesh {
-  std::string node;      // the node's name (COLLADA <node name> or id)
-  std::string name;      // the mesh's name (COLLADA <geometry name> or id)
+  std::string node;  // the node's name (COLLADA <node name> or id)
+  std::string name;  // the mesh's name (COLLADA <geometry name> or id)
   int material = -1;
   std::vector<double> positions;  // 3 per vertex, transformed by the node
   std::vector<float> normals;     // 3 per vertex (unit), transformed by the node

@@ -54,8 +54,8 @@ inline bool sphereHit(const double o[3], const double d[3], double r, double tmi
 }
 
 // flat-capped cylinder along local Z (ODE's dCylinder)
-inline bool cylinderHit(const double o[3], const double d[3], double r, double hl,
-                        double tmin, double& t) {
+inline bool cylinderHit(const double o[3], const double d[3], double r, double hl, double tmin,
+                        double& t) {
   const double r2 = r * r;
   const double tol_r = r2 * (1.0 + kTol) + 1e-15;
   const double tol_z = hl * (1.0 + kTol) + 1e-15;
@@ -139,8 +139,8 @@ void RayScene::poseItem(Item& it, const double* rot, const double* pos) {
       ext[i] = it.p[1] * std::fabs(axis) + it.p[0] * std::sqrt(std::max(1.0 - axis * axis, 0.0));
     }
   }
-  const double big = std::max({std::fabs(pos[0]), std::fabs(pos[1]), std::fabs(pos[2]), ext[0],
-                               ext[1], ext[2]});
+  const double big =
+      std::max({std::fabs(pos[0]), std::fabs(pos[1]), std::fabs(pos[2]), ext[0], ext[1], ext[2]});
   const double pad = 1e-9 * (1.0 + 2.0 * big);
   for (int i = 0; i < 3; ++i) {
     it.lo[i] = pos[i] - ext[i] - pad;
@@ -150,8 +150,8 @@ void RayScene::poseItem(Item& it, const double* rot, const double* pos) {
 
 void RayScene::posePlane(Plane& pl, const double* rot, const double* pos) {
   for (int i = 0; i < 3; ++i)
-    pl.n[i] = rot[3 * i] * pl.local[0] + rot[3 * i + 1] * pl.local[1] +
-              rot[3 * i + 2] * pl.local[2];
+    pl.n[i] =
+        rot[3 * i] * pl.local[0] + rot[3 * i + 1] * pl.local[1] + rot[3 * i + 2] * pl.local[2];
   pl.offset = pl.n[0] * pos[0] + pl.n[1] * pos[1] + pl.n[2] * pos[2];
 }
 
@@ -182,9 +182,9 @@ void RayScene::setItems(const std::vector<int>& code, const std::vector<int64_t>
   });
 }
 
-void RayScene::setPlanes(const std::vector<int64_t>& shape,
-                         const std::vector<double>& local_normal, const std::vector<int>& slot,
-                         const std::vector<double>& rot, const std::vector<double>& pos) {
+void RayScene::setPlanes(const std::vector<int64_t>& shape, const std::vector<double>& local_normal,
+                         const std::vector<int>& slot, const std::vector<double>& rot,
+                         const std::vector<double>& pos) {
   const size_t k = shape.size();
   need(local_normal, 3 * k, "plane normals");
   needPosed(slot, rot, pos, k, "plane");
@@ -238,7 +238,8 @@ void RayScene::setMeshes(int64_t static_root, const std::vector<int64_t>& shape,
   need(root, shape.size(), "mesh roots");
   need(slot, shape.size(), "mesh slots");
   const int64_t m = static_cast<int64_t>(first_.size());
-  if (static_root < -1 || static_root >= m) throw std::invalid_argument("RayScene: static mesh root not in forest");
+  if (static_root < -1 || static_root >= m)
+    throw std::invalid_argument("RayScene: static mesh root not in forest");
   static_root_ = static_root;
   dyn_meshes_.clear();
   for (size_t j = 0; j < shape.size(); ++j) {
@@ -283,8 +284,10 @@ void RayScene::walk(int64_t root, const double o[3], const double d[3], const do
     const int64_t f = first_[node], c = count_[node];
     if (!leaf_[node]) {
       for (int64_t k = 0; k < c; ++k) {
-        if (top < 512) stack[top++] = f + k;
-        else spill.push_back(f + k);
+        if (top < 512)
+          stack[top++] = f + k;
+        else
+          spill.push_back(f + k);
       }
       continue;
     }
@@ -320,10 +323,9 @@ void RayScene::walk(int64_t root, const double o[3], const double d[3], const do
   }
 }
 
-void RayScene::cast(const double* o_all, const double* d_all, int64_t n, bool common,
-                    double tmin, double max_range, const double* link_q,
-                    const double* link_p, const uint8_t* excluded, double* t_out,
-                    int64_t* who_out) const {
+void RayScene::cast(const double* o_all, const double* d_all, int64_t n, bool common, double tmin,
+                    double max_range, const double* link_q, const double* link_p,
+                    const uint8_t* excluded, double* t_out, int64_t* who_out) const {
   // the dynamic slots' world poses now (rayprims.Posing.__call__, quat_matrices)
   std::vector<double> link_rot(9 * nlinks_);
   for (int64_t l = 0; l < nlinks_; ++l) {
@@ -349,10 +351,10 @@ void RayScene::cast(const double* o_all, const double* d_all, int64_t n, bool co
     const double* lp = &slot_pos_[3 * j];
     for (int a = 0; a < 3; ++a) {
       for (int b = 0; b < 3; ++b)
-        dyn_rot_v[9 * j + 3 * a + b] = R[3 * a] * L[b] + R[3 * a + 1] * L[3 + b] +
-                                       R[3 * a + 2] * L[6 + b];
-      dyn_pos_v[3 * j + a] = p[a] + (R[3 * a] * lp[0] + R[3 * a + 1] * lp[1] +
-                                     R[3 * a + 2] * lp[2]);
+        dyn_rot_v[9 * j + 3 * a + b] =
+            R[3 * a] * L[b] + R[3 * a + 1] * L[3 + b] + R[3 * a + 2] * L[6 + b];
+      dyn_pos_v[3 * j + a] =
+          p[a] + (R[3 * a] * lp[0] + R[3 * a + 1] * lp[1] + R[3 * a + 2] * lp[2]);
     }
   }
   const double* dyn_rot = dyn_rot_v.data();

@@ -65,9 +65,9 @@ class RayScene {
   /// rows' world poses now (unit quaternion x y z w, position); excluded: one flag per
   /// shape, or nullptr. Writes t (inf for none) and the shape index hit (-1 for none). Const
   /// and self-contained: safe to run without the GIL.
-  void cast(const double* o, const double* d, int64_t n, bool common, double tmin,
-            double max_range, const double* link_q, const double* link_p,
-            const uint8_t* excluded, double* t_out, int64_t* who_out) const;
+  void cast(const double* o, const double* d, int64_t n, bool common, double tmin, double max_range,
+            const double* link_q, const double* link_p, const uint8_t* excluded, double* t_out,
+            int64_t* who_out) const;
 
  private:
   struct Item {
@@ -93,8 +93,8 @@ class RayScene {
   void checkShape(int64_t shape) const;
   static void poseItem(Item& it, const double* rot, const double* pos);
   static void posePlane(Plane& pl, const double* rot, const double* pos);
-  void walk(int64_t root, const double o[3], const double d[3], const double inv[3],
-            double tmin, const uint8_t* excluded, double& best, int64_t& who) const;
+  void walk(int64_t root, const double o[3], const double d[3], const double inv[3], double tmin,
+            const uint8_t* excluded, double& best, int64_t& who) const;
 
   std::vector<Item> items_;
   std::vector<int> group_order_;  // boxes, spheres, cylinders by shape index (dense path)

@@ -44,7 +44,8 @@ void Stepper::addSpace(dSpaceID sp, const std::vector<dBodyID>& bodies, bool sel
 
 void Stepper::removeSpace(dSpaceID sp) {
   space_bodies_.erase(sp);
-  for (auto* v : {&awake_, &dormant_, &self_collide_, &wake_}) v->erase(std::remove(v->begin(), v->end(), sp), v->end());
+  for (auto* v : {&awake_, &dormant_, &self_collide_, &wake_})
+    v->erase(std::remove(v->begin(), v->end(), sp), v->end());
 }
 
 void Stepper::moveTo(std::vector<dSpaceID>& from, std::vector<dSpaceID>& to, dSpaceID sp) {

@@ -25,14 +25,14 @@ struct Surface {
 
 struct ActiveJoint {
   dJointID id;
-  bool hinge;          // else slider
+  bool hinge;  // else slider
   bool has_pos_cmd;
   double pos_cmd;
   double effort_cmd;
   double damping;
-  double vmax;         // <= 0: no velocity limit
-  double fmax;         // servo force limit
-  double applied;      // effort added this step (out)
+  double vmax;     // <= 0: no velocity limit
+  double fmax;     // servo force limit
+  double applied;  // effort added this step (out)
 };
 
 // One contact point of a watched geom (a contact sensor's collision) in one step: `mine` is the
@@ -113,14 +113,14 @@ class Stepper {
   };
   std::vector<StaticGeom> static_geoms_;  // this step's static geoms (readStatic)
   std::vector<const StaticGeom*> near_static_;
-  bool static_nested_ = false;            // a space inside static_: plain dSpaceCollide2
+  bool static_nested_ = false;  // a space inside static_: plain dSpaceCollide2
   // contact sensors: the watched geoms, this step's points (their joints' feedback lives in
   // feedback_, whose elements keep their addresses), and the finished steps' records
   struct Pending {
     ContactRecord rec;
-    dBodyID body;     // mine's body (nullptr: static)
+    dBodyID body;  // mine's body (nullptr: static)
     dJointID joint;
-    size_t fb;        // index into feedback_
+    size_t fb;  // index into feedback_
   };
   std::unordered_set<dGeomID> watched_;
   std::vector<Pending> pending_;

@@ -18,8 +18,8 @@ TriMesh::TriMesh(const std::vector<double>& vertices, const std::vector<int64_t>
   index_.reserve(faces.size());
   for (int64_t f : faces) {
     if (f < 0 || f >= n)
-      throw std::invalid_argument("TriMesh: face index " + std::to_string(f) +
-                                  " outside the " + std::to_string(n) + " vertices");
+      throw std::invalid_argument("TriMesh: face index " + std::to_string(f) + " outside the " +
+                                  std::to_string(n) + " vertices");
     index_.push_back(static_cast<dTriIndex>(f));
   }
   ensureThreadData();
