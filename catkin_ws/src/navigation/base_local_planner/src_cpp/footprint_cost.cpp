@@ -20,8 +20,7 @@ struct Grid {
   int nx, ny;
   double ox, oy, res;
 
-  bool toMap(double wx, double wy, int& mx, int& my) const
-  {
+  bool toMap(double wx, double wy, int& mx, int& my) const {
     if (wx < ox || wy < oy) {
       return false;
     }
@@ -32,15 +31,24 @@ struct Grid {
   uint8_t cost(int mx, int my) const { return data[static_cast<long>(my) * nx + mx]; }
 };
 
-double lineCost(const Grid& g, int x0, int y0, int x1, int y1)
-{
+double lineCost(const Grid& g, int x0, int y0, int x1, int y1) {
   const int dx = std::abs(x1 - x0), dy = std::abs(y1 - y0);
   const int sx = x1 >= x0 ? 1 : -1, sy = y1 >= y0 ? 1 : -1;
   int xinc1 = sx, xinc2 = sx, yinc1 = sy, yinc2 = sy, den, num, numadd, numpixels;
   if (dx >= dy) {
-    xinc1 = 0; yinc2 = 0; den = dx; num = dx / 2; numadd = dy; numpixels = dx;
+    xinc1 = 0;
+    yinc2 = 0;
+    den = dx;
+    num = dx / 2;
+    numadd = dy;
+    numpixels = dx;
   } else {
-    xinc2 = 0; yinc1 = 0; den = dy; num = dy / 2; numadd = dx; numpixels = dy;
+    xinc2 = 0;
+    yinc1 = 0;
+    den = dy;
+    num = dy / 2;
+    numadd = dx;
+    numpixels = dy;
   }
   double line = 0.0;
   int x = x0, y = y0;
@@ -65,8 +73,7 @@ double lineCost(const Grid& g, int x0, int y0, int x1, int y1)
 // The cells the segment (x0, y0) -> (x1, y1) (world) really crosses (a grid traversal,
 // Amanatides & Woo), both ends' cells included; -1 on a lethal or unknown cell, else the
 // highest cost. The vertices' cells are on the map (checked by the caller).
-double segmentCost(const Grid& g, double x0, double y0, double x1, double y1)
-{
+double segmentCost(const Grid& g, double x0, double y0, double x1, double y1) {
   const double fx0 = (x0 - g.ox) / g.res, fy0 = (y0 - g.oy) / g.res;
   const double fx1 = (x1 - g.ox) / g.res, fy1 = (y1 - g.oy) / g.res;
   int cx = static_cast<int>(fx0), cy = static_cast<int>(fy0);
@@ -103,8 +110,7 @@ double segmentCost(const Grid& g, double x0, double y0, double x1, double y1)
 }
 
 double footprintCost(const Grid& g, double x, double y, double th, const double* fp, int nfp,
-                     int* vx, int* vy, bool exact)
-{
+                     int* vx, int* vy, bool exact) {
   int cx, cy;
   if (!g.toMap(x, y, cx, cy)) {
     return -1.0;
@@ -155,8 +161,7 @@ extern "C" {
 // the Bresenham line between the vertices' cells, which can pass a cell beside the edge.
 void blp_footprint_costs(const uint8_t* grid, int nx, int ny, double ox, double oy, double res,
                          const double* fp, int nfp, const double* xs, const double* ys,
-                         const double* ths, int n, int T, int exact, double* out)
-{
+                         const double* ths, int n, int T, int exact, double* out) {
   const Grid g{grid, nx, ny, ox, oy, res};
   int vx[64], vy[64];
   nfp = std::min(nfp, 64);

@@ -11,8 +11,7 @@ extern "C" {
 // Unreached cells get unreachable, blocked cells obstacle_value; a seed is 0 even when it is
 // blocked (plan cells are targets whatever their cost, as MapGrid::setTargetCells).
 void blp_wavefront(const uint8_t* blocked, int nx, int ny, const int32_t* seeds, int nseeds,
-                   int64_t obstacle_value, int64_t unreachable, int64_t* out)
-{
+                   int64_t obstacle_value, int64_t unreachable, int64_t* out) {
   const int n = nx * ny;
   std::vector<int32_t> queue;
   queue.reserve(n);

@@ -10,14 +10,13 @@
 namespace {
 const double kCostObs = 254.0;
 const double kPotHigh = 1.0e10;
-}
+}  // namespace
 
 extern "C" {
 
 // costs: nx*ny navfn costs; pot: nx*ny output. Stops `extra` cells after `stop` (-1: never).
 void navfn_propagate(const double* costs, int nx, int ny, int goal, int stop, int extra,
-                     double h_scale, int sx, int sy, double* pot)
-{
+                     double h_scale, int sx, int sy, double* pot) {
   const int n = nx * ny;
   for (int i = 0; i < n; ++i) {
     pot[i] = kPotHigh;

@@ -20,34 +20,34 @@ extern "C" {
 typedef struct {
   uint16_t hits, visits;
   float mx, my;
-} GmCell;                 // 12 bytes, no padding (numpy: u2, u2, f4, f4)
+} GmCell;  // 12 bytes, no padding (numpy: u2, u2, f4, f4)
 
 typedef struct {
   int n, h, w;
   double ox, oy, delta;
-  GmCell** cells;         // n pointers, each to h * w cells
+  GmCell** cells;  // n pointers, each to h * w cells
 } GmGrids;
 
 typedef struct {
-  int beams;              // number of readings
-  const double* ranges;   // [m]
-  const double* angles;   // [rad] in the laser frame
-  const double* cos_a;    // cos / sin of the angles (precomputed once per scan)
+  int beams;             // number of readings
+  const double* ranges;  // [m]
+  const double* angles;  // [rad] in the laser frame
+  const double* cos_a;   // cos / sin of the angles (precomputed once per scan)
   const double* sin_a;
-  double max_range;       // readings beyond (or 0 / NaN) are dropped
-  double max_urange;      // readings are clipped to this (clipped ones mark free space only)
+  double max_range;   // readings beyond (or 0 / NaN) are dropped
+  double max_urange;  // readings are clipped to this (clipped ones mark free space only)
 } GmScan;
 
 typedef struct {
-  double sigma;           // endpoint matching sigma [m^2]
-  int kernel;             // correspondence search half window [cells]
-  double lsigma;          // likelihood sigma
-  int lskip;              // use every (lskip + 1)-th beam
-  double lstep, astep;    // initial hill-climbing steps [m], [rad]
-  int iterations;         // refinements
-  double fullness;        // cell fullness threshold for a hit (gmapping: 0.1)
-  double null_likelihood; // likelihood of a beam with no correspondence (gmapping: -0.5)
-  double minimum_score;   // a match scoring <= this keeps the odometry pose
+  double sigma;            // endpoint matching sigma [m^2]
+  int kernel;              // correspondence search half window [cells]
+  double lsigma;           // likelihood sigma
+  int lskip;               // use every (lskip + 1)-th beam
+  double lstep, astep;     // initial hill-climbing steps [m], [rad]
+  int iterations;          // refinements
+  double fullness;         // cell fullness threshold for a hit (gmapping: 0.1)
+  double null_likelihood;  // likelihood of a beam with no correspondence (gmapping: -0.5)
+  double minimum_score;    // a match scoring <= this keeps the odometry pose
 } GmMatcherParams;
 
 // Registers the scan at poses[i] into grid i for every particle (free cells along the beam,
@@ -56,13 +56,16 @@ typedef struct {
 int gm_integrate(GmGrids* g, const double* poses, const GmScan* scan);
 
 // gmapping's score of one pose against grid i.
-double gm_score(const GmGrids* g, int i, const double* pose, const GmScan* scan, const GmMatcherParams* p);
+double gm_score(const GmGrids* g, int i, const double* pose, const GmScan* scan,
+                const GmMatcherParams* p);
 
 // Hill-climbing optimisation of poses[i] against grid i for every particle; writes the accepted
 // poses to out_poses (n x 3: the optimised pose if its score > minimum_score, else the input pose),
-// the match scores to out_scores (n) and the log likelihood of the accepted pose to out_likelihood (n).
-void gm_optimize(const GmGrids* g, const double* poses, const GmScan* scan, const GmMatcherParams* p,
-                 double* out_poses, double* out_scores, double* out_likelihood);
+// the match scores to out_scores (n) and the log likelihood of the accepted pose to out_likelihood
+// (n).
+void gm_optimize(const GmGrids* g, const double* poses, const GmScan* scan,
+                 const GmMatcherParams* p, double* out_poses, double* out_scores,
+                 double* out_likelihood);
 
 // Log likelihood and score of pose against grid i (gmapping's likelihoodAndScore).
 void gm_likelihood_and_score(const GmGrids* g, int i, const double* pose, const GmScan* scan,

@@ -18,13 +18,16 @@ struct Grid {
   const GmCell* cells;
   int w, h;
   double ox, oy, delta;
-  Grid(const GmGrids* g, int i) : cells(g->cells[i]), w(g->w), h(g->h), ox(g->ox), oy(g->oy), delta(g->delta) {}
+  Grid(const GmGrids* g, int i)
+      : cells(g->cells[i]), w(g->w), h(g->h), ox(g->ox), oy(g->oy), delta(g->delta) {}
 };
 
 // Added to a full / not full cell's distance or coordinate: x + 0.0 is x, x + inf is inf.
 const double kNotFull[2] = {HUGE_VAL, 0.0};
 
-inline int cellOf(double v, double o, double d) { return static_cast<int>(std::floor((v - o) / d)); }
+inline int cellOf(double v, double o, double d) {
+  return static_cast<int>(std::floor((v - o) / d));
+}
 
 // cellOf without the division where that cannot change the result: (v - o) * (1 / d) is within a
 // few ulps (< 1e-12 cells on any grid that fits in memory) of the quotient, so both have the same
@@ -41,7 +44,9 @@ inline int cellOfFast(double v, double o, double d, double inv_d) {
 // moves a pose by a few centimetres and turns it by a few hundredths of a radian).
 constexpr int kFieldMargin = 8;
 
-inline void bump(uint16_t& c) { if (c < 65535) ++c; }
+inline void bump(uint16_t& c) {
+  if (c < 65535) ++c;
+}
 
 // Best squared distance from the endpoint to the mean point of a full cell (hits / visits above
 // the fullness threshold; unknown and outside cells are not full) in the kernel window around
@@ -67,7 +72,7 @@ inline double bestMu2(const Grid& g, double hx, double hy, const GmMatcherParams
       const bool full = static_cast<double>(c.hits) > threshold * static_cast<double>(c.visits);
       const double mx = g.ox + cx * g.delta + c.mx - hx, my = by + c.my - hy;
       const double mu2 = mx * mx + my * my;
-      const double d = mu2 + kNotFull[full];   // a table, not a branch
+      const double d = mu2 + kNotFull[full];  // a table, not a branch
       best = d < best ? d : best;
     }
   }
@@ -95,15 +100,16 @@ inline double window3(const double* rows, long stride, double hx, double hy) {
   __m128d best = _mm_set1_pd(HUGE_VAL);
   const double* row = rows;
   for (int r = 0; r < 3; ++r, row += stride) {
-    const __m128d a = _mm_sub_pd(_mm_loadu_pd(row), h);       // (ax, ay)
-    const __m128d b = _mm_sub_pd(_mm_loadu_pd(row + 2), h);   // (bx, by)
+    const __m128d a = _mm_sub_pd(_mm_loadu_pd(row), h);      // (ax, ay)
+    const __m128d b = _mm_sub_pd(_mm_loadu_pd(row + 2), h);  // (bx, by)
     const __m128d a2 = _mm_mul_pd(a, a), b2 = _mm_mul_pd(b, b);
     // (ax^2 + ay^2, bx^2 + by^2)
     const __m128d d = _mm_add_pd(_mm_unpacklo_pd(a2, b2), _mm_unpackhi_pd(a2, b2));
     best = _mm_min_pd(d, best);
   }
   // the third column: rows 0 and 1 together, row 2 alone
-  const __m128d c0 = _mm_sub_pd(_mm_loadu_pd(rows + 4), h), c1 = _mm_sub_pd(_mm_loadu_pd(rows + stride + 4), h);
+  const __m128d c0 = _mm_sub_pd(_mm_loadu_pd(rows + 4), h),
+                c1 = _mm_sub_pd(_mm_loadu_pd(rows + stride + 4), h);
   const __m128d c02 = _mm_mul_pd(c0, c0), c12 = _mm_mul_pd(c1, c1);
   best = _mm_min_pd(_mm_add_pd(_mm_unpacklo_pd(c02, c12), _mm_unpackhi_pd(c02, c12)), best);
   const double* c2 = rows + 2 * stride + 4;
@@ -147,10 +153,10 @@ struct FieldLookup {
   static constexpr int kTileBits = 3;
   const Grid& g;
   const GmMatcherParams* p;
-  int x0 = 0, y0 = 0, w = 0, h = 0;   // the box in grid cells
-  int tw = 0, th = 0;                 // the box in tiles
-  double* pts = nullptr;              // w * h * 2 doubles
-  uint8_t* built = nullptr;           // tw * th flags
+  int x0 = 0, y0 = 0, w = 0, h = 0;  // the box in grid cells
+  int tw = 0, th = 0;                // the box in tiles
+  double* pts = nullptr;             // w * h * 2 doubles
+  uint8_t* built = nullptr;          // tw * th flags
   double inv_delta = 1.0 / g.delta;
 
   // The box around the endpoints of the scan at pose, margin cells wider on every side.
@@ -158,8 +164,10 @@ struct FieldLookup {
     int ax = g.w, ay = g.h, bx = -1, by = -1;
     forEachBeam(pose, scan, p, [&](double hx, double hy) {
       const int cx = cellOf(hx, g.ox, g.delta), cy = cellOf(hy, g.oy, g.delta);
-      ax = std::min(ax, cx); bx = std::max(bx, cx);
-      ay = std::min(ay, cy); by = std::max(by, cy);
+      ax = std::min(ax, cx);
+      bx = std::max(bx, cx);
+      ay = std::min(ay, cy);
+      by = std::max(by, cy);
     });
     w = h = tw = th = 0;
     if (bx < ax || by < ay) return;
@@ -210,7 +218,9 @@ struct FieldLookup {
   inline void need(int fx, int fy, int span) {
     const int tx0 = fx >> kTileBits, tx1 = (fx + span) >> kTileBits;
     const int ty0 = fy >> kTileBits, ty1 = (fy + span) >> kTileBits;
-    if (built[ty0 * tw + tx0] & built[ty0 * tw + tx1] & built[ty1 * tw + tx0] & built[ty1 * tw + tx1]) return;
+    if (built[ty0 * tw + tx0] & built[ty0 * tw + tx1] & built[ty1 * tw + tx0] &
+        built[ty1 * tw + tx1])
+      return;
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx)
         if (!built[ty * tw + tx]) fillTile(tx, ty);
@@ -229,7 +239,7 @@ struct FieldLookup {
       const double* cell = cell0 + 2L * r * w;
       for (int c = 0; c <= 2 * k; ++c, cell += 2) {
         const double mx = cell[0] - hx, my = cell[1] - hy;
-        const double d = mx * mx + my * my;   // inf for a cell that is not full
+        const double d = mx * mx + my * my;  // inf for a cell that is not full
         best = d < best ? d : best;
       }
     }
@@ -280,11 +290,17 @@ extern "C" int gm_integrate(GmGrids* g, const double* poses, const GmScan* scan)
       double r = scan->ranges[b];
       if (!(r > 0.0) || r > scan->max_range || std::isnan(r)) continue;
       bool cropped = false;
-      if (r > scan->max_urange) { r = scan->max_urange; cropped = true; }
+      if (r > scan->max_urange) {
+        r = scan->max_urange;
+        cropped = true;
+      }
       double ex = pose[0] + r * (ct * scan->cos_a[b] - st * scan->sin_a[b]);
       double ey = pose[1] + r * (st * scan->cos_a[b] + ct * scan->sin_a[b]);
       int x1 = cellOf(ex, g->ox, g->delta), y1 = cellOf(ey, g->oy, g->delta);
-      if (!inside(x1, y1) || !inside(x0, y0)) { status = -1; continue; }
+      if (!inside(x1, y1) || !inside(x0, y0)) {
+        status = -1;
+        continue;
+      }
       // Bresenham from the laser cell to the endpoint cell: free cells before the endpoint
       int dx = std::abs(x1 - x0), dy = -std::abs(y1 - y0);
       int sx = x0 < x1 ? 1 : -1, sy = y0 < y1 ? 1 : -1, err = dx + dy;
@@ -294,8 +310,16 @@ extern "C" int gm_integrate(GmGrids* g, const double* poses, const GmScan* scan)
       while (!(cx == x1 && cy == y1)) {
         bump(c->visits);
         int e2 = 2 * err;
-        if (e2 >= dy) { err += dy; cx += sx; c += sx; }
-        if (e2 <= dx) { err += dx; cy += sy; c += srow; }
+        if (e2 >= dy) {
+          err += dy;
+          cx += sx;
+          c += sx;
+        }
+        if (e2 <= dx) {
+          err += dx;
+          cy += sy;
+          c += srow;
+        }
       }
       GmCell& end = cells[y1 * w + x1];
       bump(end.visits);
@@ -318,17 +342,20 @@ extern "C" double gm_score(const GmGrids* g, int i, const double* pose, const Gm
   return score(lookup, pose, scan, p);
 }
 
-extern "C" void gm_likelihood_and_score(const GmGrids* g, int i, const double* pose, const GmScan* scan,
-                                        const GmMatcherParams* p, double* likelihood, double* score) {
+extern "C" void gm_likelihood_and_score(const GmGrids* g, int i, const double* pose,
+                                        const GmScan* scan, const GmMatcherParams* p,
+                                        double* likelihood, double* score) {
   const Grid grid(g, i);
   GridLookup lookup{grid, p};
   likelihoodAndScore(lookup, pose, scan, p, likelihood, score);
 }
 
-extern "C" void gm_optimize(const GmGrids* g, const double* poses, const GmScan* scan, const GmMatcherParams* p,
-                            double* out_poses, double* out_scores, double* out_likelihood) {
+extern "C" void gm_optimize(const GmGrids* g, const double* poses, const GmScan* scan,
+                            const GmMatcherParams* p, double* out_poses, double* out_scores,
+                            double* out_likelihood) {
   // moves in gmapping's order; move m ^ 1 undoes move m
-  static const int kMoves[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, -1, 0}, {0, 1, 0}, {0, 0, 1}, {0, 0, -1}};
+  static const int kMoves[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, -1, 0},
+                                   {0, 1, 0}, {0, 0, 1},  {0, 0, -1}};
   std::vector<double> points;
   std::vector<uint8_t> flags;
   for (int i = 0; i < g->n; ++i) {
@@ -343,7 +370,7 @@ extern "C" void gm_optimize(const GmGrids* g, const double* poses, const GmScan*
     double best_score = current_score;
     double ldelta = p->lstep, adelta = p->astep;
     int refinement = 0;
-    int came_by = -1;   // the move that led to current in the last round (-1: none)
+    int came_by = -1;  // the move that led to current in the last round (-1: none)
     do {
       if (best_score >= current_score) {  // no move improved: refine
         ++refinement;
