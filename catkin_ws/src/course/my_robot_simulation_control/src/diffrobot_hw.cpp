@@ -7,7 +7,7 @@ namespace my_robot_simulation_control
 
 bool DiffRobotHW::init(ros::NodeHandle& root_nh, ros::NodeHandle& robot_hw_nh)
 {
-  robot_hw_nh.param("joints", joint_names_, std::vector<std::string>{"wheel_left_joint", "wheel_right_joint"});
+  robot_hw_nh.param("joints", joint_names_, std::vector<std::string>{ "wheel_left_joint", "wheel_right_joint" });
   const std::size_t n = joint_names_.size();
   pos_.assign(n, 0.0);
   vel_.assign(n, 0.0);
@@ -41,7 +41,7 @@ void DiffRobotHW::stateCallback(const sensor_msgs::JointStateConstPtr& msg)
 bool DiffRobotHW::waitForState(const ros::WallDuration& timeout)
 {
   fresh_ = false;
-  queue_.callAvailable(timeout);   // one lockstep period: the simulator waits for our answer
+  queue_.callAvailable(timeout);  // one lockstep period: the simulator waits for our answer
   if (!fresh_)
     return false;
   state_time_ = state_->header.stamp;
@@ -69,7 +69,7 @@ void DiffRobotHW::read(const ros::Time& /*time*/, const ros::Duration& /*period*
 void DiffRobotHW::write(const ros::Time& time, const ros::Duration& /*period*/)
 {
   sensor_msgs::JointState cmd;
-  cmd.header.stamp = time;   // answers the state of this time
+  cmd.header.stamp = time;  // answers the state of this time
   cmd.name = joint_names_;
   cmd.effort = cmd_;
   command_pub_.publish(cmd);

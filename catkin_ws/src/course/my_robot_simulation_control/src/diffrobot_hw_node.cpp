@@ -9,7 +9,7 @@
 int main(int argc, char** argv)
 {
   ros::init(argc, argv, "diffrobot_hw");
-  ros::NodeHandle root_nh;          // the robot namespace
+  ros::NodeHandle root_nh;  // the robot namespace
   ros::NodeHandle robot_hw_nh("~");
   my_robot_simulation_control::DiffRobotHW robot;
   if (!robot.init(root_nh, robot_hw_nh))
@@ -18,7 +18,7 @@ int main(int argc, char** argv)
   double control_period = 0.001;
   root_nh.param("ode_sim/control_period", control_period, control_period);
 
-  ros::AsyncSpinner spinner(1);     // controller_manager services, command topics
+  ros::AsyncSpinner spinner(1);  // controller_manager services, command topics
   spinner.start();
   ros::Time last;
   while (ros::ok())

@@ -30,9 +30,10 @@ int main()
   std::sort(t.begin(), t.end());
   std::sort(wall.begin(), wall.end());
   const double median = t[t.size() / 2], period = 1.0 / 30.0;
-  std::printf("pcl_filter_640x480: %zu -> %zu points (passthrough %zu, voxel %zu, plane %zu), "
-              "median CPU %.2f ms = %.3f of a 30 Hz camera period (wall %.2f ms)\n",
-              s.input, s.output, s.after_passthrough, s.after_voxel, s.plane_inliers, median * 1e3,
-              median / period, wall[wall.size() / 2] * 1e3);
+  std::printf(
+      "pcl_filter_640x480: %zu -> %zu points (passthrough %zu, voxel %zu, plane %zu), "
+      "median CPU %.2f ms = %.3f of a 30 Hz camera period (wall %.2f ms)\n",
+      s.input, s.output, s.after_passthrough, s.after_voxel, s.plane_inliers, median * 1e3, median / period,
+      wall[wall.size() / 2] * 1e3);
   return 0;
 }

@@ -13,8 +13,7 @@ namespace obstacle_cloud_filter
 class ObstacleCloudFilterNode
 {
 public:
-  ObstacleCloudFilterNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, const FilterParams& params)
-    : params_(params)
+  ObstacleCloudFilterNode(ros::NodeHandle& nh, ros::NodeHandle& pnh, const FilterParams& params) : params_(params)
   {
     pub_ = nh.advertise<sensor_msgs::PointCloud2>("obstacles", 1);
     sub_ = nh.subscribe("points", 1, &ObstacleCloudFilterNode::pointsCallback, this);
@@ -24,7 +23,7 @@ public:
 private:
   void pointsCallback(const sensor_msgs::PointCloud2ConstPtr& msg)
   {
-    bool has_xyz[3] = {false, false, false};
+    bool has_xyz[3] = { false, false, false };
     for (const auto& f : msg->fields)
       for (int i = 0; i < 3; ++i)
         if (f.name == std::string(1, static_cast<char>('x' + i)))
@@ -39,9 +38,8 @@ private:
     pcl::fromROSMsg(*msg, in);
     FilterStats stats;
     filterObstacles(in, params_, out, &stats);
-    ROS_DEBUG("obstacle_cloud_filter: %zu points -> passthrough %zu -> voxel %zu -> plane %zu -> %zu",
-              stats.input, stats.after_passthrough, stats.after_voxel, stats.plane_inliers,
-              stats.output);
+    ROS_DEBUG("obstacle_cloud_filter: %zu points -> passthrough %zu -> voxel %zu -> plane %zu -> %zu", stats.input,
+              stats.after_passthrough, stats.after_voxel, stats.plane_inliers, stats.output);
     sensor_msgs::PointCloud2 cloud;
     pcl::toROSMsg(out, cloud);
     cloud.header = msg->header;
@@ -75,11 +73,11 @@ int main(int argc, char** argv)
     ROS_ERROR("obstacle_cloud_filter: bad parameter %s", error.c_str());
     return 1;
   }
-  ROS_INFO("obstacle_cloud_filter: %s in [%g, %g]%s, leaf_size %g m, plane removal %s "
-           "(distance_threshold %g m, max_iterations %d, min_plane_inliers %d)",
-           p.filter_field_name.c_str(), p.filter_limit_min, p.filter_limit_max,
-           p.filter_limit_negative ? " (negative)" : "", p.leaf_size, p.remove_plane ? "on" : "off",
-           p.distance_threshold, p.max_iterations, p.min_plane_inliers);
+  ROS_INFO(
+      "obstacle_cloud_filter: %s in [%g, %g]%s, leaf_size %g m, plane removal %s "
+      "(distance_threshold %g m, max_iterations %d, min_plane_inliers %d)",
+      p.filter_field_name.c_str(), p.filter_limit_min, p.filter_limit_max, p.filter_limit_negative ? " (negative)" : "",
+      p.leaf_size, p.remove_plane ? "on" : "off", p.distance_threshold, p.max_iterations, p.min_plane_inliers);
   obstacle_cloud_filter::ObstacleCloudFilterNode node(nh, pnh, p);
   ros::spin();
   return 0;

@@ -40,8 +40,10 @@ void filterObstacles(const pcl::PointCloud<pcl::PointXYZ>& in, const FilterParam
   auto cloud = pcl::make_shared<pcl::PointCloud<pcl::PointXYZ>>();
   // 1. PassThrough (also drops NaN points); without a field only the NaNs go
   cloud->reserve(in.size());
-  const int axis = p.filter_field_name == "x" ? 0 : p.filter_field_name == "y" ? 1 :
-                   p.filter_field_name == "z" ? 2 : -1;
+  const int axis = p.filter_field_name == "x"   ? 0
+                   : p.filter_field_name == "y" ? 1
+                   : p.filter_field_name == "z" ? 2
+                                                : -1;
   for (const auto& pt : in.points)
   {
     if (!std::isfinite(pt.x) || !std::isfinite(pt.y) || !std::isfinite(pt.z))

@@ -24,7 +24,8 @@ inline pcl::PointCloud<pcl::PointXYZ> scene(int width, int height, float noise =
   c.is_dense = false;
   c.points.resize(static_cast<size_t>(width) * height);
   unsigned seed = 12345;
-  auto rnd = [&seed]() {
+  auto rnd = [&seed]()
+  {
     seed = seed * 1103515245u + 12345u;
     return static_cast<float>((seed >> 8) & 0xFFFF) / 65535.0f - 0.5f;
   };

@@ -33,13 +33,13 @@ int main(int argc, char **argv)
   spinner.start();
 
   std::chrono::system_clock::time_point begin = std::chrono::system_clock::now();
-  std::chrono::system_clock::time_point end   = std::chrono::system_clock::now();
+  std::chrono::system_clock::time_point end = std::chrono::system_clock::now();
 
   ros::Time internal_time(0);
   const ros::Duration dt = robot.getPeriod();
   double elapsed_secs = 0;
 
-  while(ros::ok())
+  while (ros::ok())
   {
     begin = std::chrono::system_clock::now();
 
@@ -51,12 +51,11 @@ int main(int argc, char **argv)
 
     end = std::chrono::system_clock::now();
 
-    elapsed_secs = std::chrono::duration_cast<std::chrono::duration<double> >((end - begin)).count();
+    elapsed_secs = std::chrono::duration_cast<std::chrono::duration<double>>((end - begin)).count();
 
     if (dt.toSec() - elapsed_secs < 0.0)
     {
-      ROS_WARN_STREAM_THROTTLE(
-            0.1, "Control cycle is taking to much time, elapsed: " << elapsed_secs);
+      ROS_WARN_STREAM_THROTTLE(0.1, "Control cycle is taking to much time, elapsed: " << elapsed_secs);
     }
     else
     {

@@ -27,7 +27,7 @@ struct FilterParams
 struct FilterStats
 {
   size_t input = 0, after_passthrough = 0, after_voxel = 0, plane_inliers = 0, output = 0;
-  double plane[4] = {0, 0, 0, 0};  ///< ax + by + cz + d = 0 of the removed plane
+  double plane[4] = { 0, 0, 0, 0 };  ///< ax + by + cz + d = 0 of the removed plane
 };
 
 /// Returns an empty string when the parameters are valid, else "<param>: what is wrong".

@@ -14,9 +14,21 @@ namespace robot_localization
 constexpr int STATE_SIZE = 15;
 enum StateMembers
 {
-  StateMemberX = 0, StateMemberY, StateMemberZ, StateMemberRoll, StateMemberPitch, StateMemberYaw,
-  StateMemberVx, StateMemberVy, StateMemberVz, StateMemberVroll, StateMemberVpitch, StateMemberVyaw,
-  StateMemberAx, StateMemberAy, StateMemberAz
+  StateMemberX = 0,
+  StateMemberY,
+  StateMemberZ,
+  StateMemberRoll,
+  StateMemberPitch,
+  StateMemberYaw,
+  StateMemberVx,
+  StateMemberVy,
+  StateMemberVz,
+  StateMemberVroll,
+  StateMemberVpitch,
+  StateMemberVyaw,
+  StateMemberAx,
+  StateMemberAy,
+  StateMemberAz
 };
 
 using StateVector = Eigen::Matrix<double, STATE_SIZE, 1>;
@@ -50,8 +62,7 @@ public:
 
   // Filter one measurement of the state members `indices` (size k): initialise from it, or
   // predict to its time and correct. False when rejected by the gate (or not finite).
-  bool process(double time, const Eigen::VectorXd& z, const Eigen::MatrixXd& covariance,
-               const Eigen::VectorXi& indices,
+  bool process(double time, const Eigen::VectorXd& z, const Eigen::MatrixXd& covariance, const Eigen::VectorXi& indices,
                double threshold = std::numeric_limits<double>::infinity());
   bool correct(const Eigen::VectorXd& z, const Eigen::MatrixXd& covariance, const Eigen::VectorXi& indices,
                double threshold = std::numeric_limits<double>::infinity());
@@ -67,8 +78,7 @@ public:
 private:
   bool correctSequential(const Eigen::VectorXd& z, const Eigen::VectorXd& r, const Eigen::VectorXi& idx,
                          double threshold);
-  bool correctBatch(const Eigen::VectorXd& z, const Eigen::MatrixXd& R, const Eigen::VectorXi& idx,
-                    double threshold);
+  bool correctBatch(const Eigen::VectorXd& z, const Eigen::MatrixXd& R, const Eigen::VectorXi& idx, double threshold);
   bool commit(StateVector& x, StateMatrix& p);
 
   StateVector x_;

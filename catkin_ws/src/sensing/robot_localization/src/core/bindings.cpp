@@ -21,10 +21,12 @@ PYBIND11_MODULE(_ekf_core, m)
         "negative variances -> absolute value, tiny ones -> MIN_VARIANCE");
   py::class_<Ekf>(m, "Ekf")
       .def(py::init<>())
-      .def_property("x", [](Ekf& e) -> Eigen::Ref<StateVector> { return e.state(); },
-                    [](Ekf& e, const StateVector& v) { e.state() = v; }, py::return_value_policy::reference_internal)
-      .def_property("P", [](Ekf& e) -> Eigen::Ref<StateMatrix> { return e.covariance(); },
-                    [](Ekf& e, const StateMatrix& v) { e.covariance() = v; }, py::return_value_policy::reference_internal)
+      .def_property(
+          "x", [](Ekf& e) -> Eigen::Ref<StateVector> { return e.state(); },
+          [](Ekf& e, const StateVector& v) { e.state() = v; }, py::return_value_policy::reference_internal)
+      .def_property(
+          "P", [](Ekf& e) -> Eigen::Ref<StateMatrix> { return e.covariance(); },
+          [](Ekf& e, const StateMatrix& v) { e.covariance() = v; }, py::return_value_policy::reference_internal)
       .def_property("Q", &Ekf::processNoiseCovariance, &Ekf::setProcessNoiseCovariance)
       .def_property("P0", &Ekf::initialCovariance, &Ekf::setInitialCovariance)
       .def_readwrite("initialized", &Ekf::initialized)

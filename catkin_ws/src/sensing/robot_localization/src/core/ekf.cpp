@@ -7,10 +7,7 @@ namespace robot_localization
 {
 namespace
 {
-bool isAngle(int i)
-{
-  return i == StateMemberRoll || i == StateMemberPitch || i == StateMemberYaw;
-}
+bool isAngle(int i) { return i == StateMemberRoll || i == StateMemberPitch || i == StateMemberYaw; }
 }  // namespace
 
 double normalizeAngle(double a)
@@ -40,10 +37,7 @@ Ekf::Ekf()
   reset();
 }
 
-void Ekf::reset()
-{
-  reset(StateVector::Zero());
-}
+void Ekf::reset() { reset(StateVector::Zero()); }
 
 void Ekf::reset(const StateVector& state)
 {
@@ -66,9 +60,8 @@ std::pair<StateMatrix, StateMatrix> Ekf::transfer(double dt) const
     cp = std::copysign(1e-9, cp);
   const double tp = sp / cp, secp = 1.0 / cp;
   Eigen::Matrix3d R;
-  R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-       sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
-       -sp, cp * sr, cp * cr;
+  R << cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr, sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr,
+      -sp, cp * sr, cp * cr;
   StateMatrix F = StateMatrix::Identity();
   F.block<3, 3>(0, 6) = R * dt;
   F.block<3, 3>(0, 12) = R * (0.5 * dt * dt);
@@ -84,15 +77,11 @@ std::pair<StateMatrix, StateMatrix> Ekf::transfer(double dt) const
   // the Jacobian: F plus the derivatives of the rotation-dependent terms by roll, pitch, yaw
   const Eigen::Vector3d d = x_.segment<3>(6) * dt + 0.5 * x_.segment<3>(12) * dt * dt;
   Eigen::Matrix3d dR_dr, dR_dp, dR_dy;
-  dR_dr << 0.0, cy * sp * cr + sy * sr, -cy * sp * sr + sy * cr,
-           0.0, sy * sp * cr - cy * sr, -sy * sp * sr - cy * cr,
-           0.0, cp * cr, -cp * sr;
-  dR_dp << -cy * sp, cy * cp * sr, cy * cp * cr,
-           -sy * sp, sy * cp * sr, sy * cp * cr,
-           -cp, -sp * sr, -sp * cr;
-  dR_dy << -sy * cp, -sy * sp * sr - cy * cr, -sy * sp * cr + cy * sr,
-           cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr,
-           0.0, 0.0, 0.0;
+  dR_dr << 0.0, cy * sp * cr + sy * sr, -cy * sp * sr + sy * cr, 0.0, sy * sp * cr - cy * sr, -sy * sp * sr - cy * cr,
+      0.0, cp * cr, -cp * sr;
+  dR_dp << -cy * sp, cy * cp * sr, cy * cp * cr, -sy * sp, sy * cp * sr, sy * cp * cr, -cp, -sp * sr, -sp * cr;
+  dR_dy << -sy * cp, -sy * sp * sr - cy * cr, -sy * sp * cr + cy * sr, cy * cp, cy * sp * sr - sy * cr,
+      cy * sp * cr + sy * sr, 0.0, 0.0, 0.0;
   StateMatrix J = F;
   J.block<3, 1>(0, StateMemberRoll) += dR_dr * d;
   J.block<3, 1>(0, StateMemberPitch) += dR_dp * d;
@@ -103,7 +92,7 @@ std::pair<StateMatrix, StateMatrix> Ekf::transfer(double dt) const
   J(StateMemberPitch, StateMemberRoll) += (-sr * vp - cr * vy) * dt;
   J(StateMemberYaw, StateMemberRoll) += (cr * secp * vp - sr * secp * vy) * dt;
   J(StateMemberYaw, StateMemberPitch) += (sr * vp + cr * vy) * tp * secp * dt;
-  return {F, J};
+  return { F, J };
 }
 
 void Ekf::predict(double time)
@@ -204,12 +193,11 @@ bool Ekf::correctSequential(const Eigen::VectorXd& z, const Eigen::VectorXd& r, 
   return commit(x, sym);
 }
 
-bool Ekf::correctBatch(const Eigen::VectorXd& z, const Eigen::MatrixXd& R, const Eigen::VectorXi& idx,
-                       double threshold)
+bool Ekf::correctBatch(const Eigen::VectorXd& z, const Eigen::MatrixXd& R, const Eigen::VectorXi& idx, double threshold)
 {
   const Eigen::Index k = idx.size();
   Eigen::VectorXd innovation(k);
-  Eigen::MatrixXd pxh(STATE_SIZE, k);   // P H^T
+  Eigen::MatrixXd pxh(STATE_SIZE, k);  // P H^T
   for (Eigen::Index a = 0; a < k; ++a)
   {
     innovation(a) = z(a) - x_(idx(a));
@@ -217,7 +205,7 @@ bool Ekf::correctBatch(const Eigen::VectorXd& z, const Eigen::MatrixXd& R, const
       innovation(a) = normalizeAngle(innovation(a));
     pxh.col(a) = p_.col(idx(a));
   }
-  Eigen::MatrixXd s(k, k);              // H P H^T + R
+  Eigen::MatrixXd s(k, k);  // H P H^T + R
   for (Eigen::Index a = 0; a < k; ++a)
     s.row(a) = pxh.row(idx(a));
   s += R;

@@ -25,9 +25,9 @@ class Diffbot : public hardware_interface::RobotHW
 {
 public:
   Diffbot()
-  : running_(true)
-  , start_srv_(nh_.advertiseService("start", &Diffbot::start_callback, this))
-  , stop_srv_(nh_.advertiseService("stop", &Diffbot::stop_callback, this))
+    : running_(true)
+    , start_srv_(nh_.advertiseService("start", &Diffbot::start_callback, this))
+    , stop_srv_(nh_.advertiseService("stop", &Diffbot::stop_callback, this))
   {
     // Intialize raw data
     std::fill_n(pos_, NUM_JOINTS, 0.0);
@@ -52,27 +52,30 @@ public:
     registerInterface(&jnt_vel_interface_);
   }
 
-  ros::Time getTime() const {return ros::Time::now();}
-  ros::Duration getPeriod() const {return ros::Duration(0.01);}
+  ros::Time getTime() const { return ros::Time::now(); }
+  ros::Duration getPeriod() const { return ros::Duration(0.01); }
 
-  void leftMotorCallback(const std_msgs::Float64::ConstPtr& msg){
-    vel_[0]=msg->data;
-    vel_[2]=vel_[0];
-    //ROS_WARN_STREAM("Commands for joints: " <<vel_[0]);
+  void leftMotorCallback(const std_msgs::Float64::ConstPtr& msg)
+  {
+    vel_[0] = msg->data;
+    vel_[2] = vel_[0];
+    // ROS_WARN_STREAM("Commands for joints: " <<vel_[0]);
   }
 
-  void rightMotorCallback(const std_msgs::Float64::ConstPtr& msg){
-    vel_[1]=msg->data;
-    vel_[3]=vel_[1];
-    //ROS_WARN_STREAM("Commands for joints: " <<vel_[1]);
+  void rightMotorCallback(const std_msgs::Float64::ConstPtr& msg)
+  {
+    vel_[1] = msg->data;
+    vel_[3] = vel_[1];
+    // ROS_WARN_STREAM("Commands for joints: " <<vel_[1]);
   }
 
-  void init(ros::NodeHandle &nh){
-    nh_=nh;
-    pub_left_motor_value_=nh_.advertise<std_msgs::Int32>("motor_left_cmd", 10);
-    pub_right_motor_value_=nh_.advertise<std_msgs::Int32>("motor_right_cmd", 10);
-    sub_left_motor_vel_=nh_.subscribe("motor_left_vel", 10, &Diffbot::leftMotorCallback, this);
-    sub_right_motor_vel_=nh_.subscribe("motor_right_vel", 10, &Diffbot::rightMotorCallback, this);
+  void init(ros::NodeHandle& nh)
+  {
+    nh_ = nh;
+    pub_left_motor_value_ = nh_.advertise<std_msgs::Int32>("motor_left_cmd", 10);
+    pub_right_motor_value_ = nh_.advertise<std_msgs::Int32>("motor_right_cmd", 10);
+    sub_left_motor_vel_ = nh_.subscribe("motor_left_vel", 10, &Diffbot::leftMotorCallback, this);
+    sub_right_motor_vel_ = nh_.subscribe("motor_right_vel", 10, &Diffbot::rightMotorCallback, this);
     ROS_INFO_STREAM("init completed");
   }
 
@@ -86,8 +89,8 @@ public:
         // Note that pos_[i] will be NaN for one more cycle after we start(),
         // but that is consistent with the knowledge we have about the state
         // of the robot.
-        pos_[i] += vel_[i]*getPeriod().toSec(); // update position
-        //vel_[i] = cmd_[i]; // might add smoothing here later
+        pos_[i] += vel_[i] * getPeriod().toSec();  // update position
+        // vel_[i] = cmd_[i]; // might add smoothing here later
       }
     }
     else
@@ -107,11 +110,12 @@ public:
     // }
     // os << vel_[NUM_JOINTS - 1];
 
-    //ROS_WARN_STREAM("Commands for vel: " << os.str());
+    // ROS_WARN_STREAM("Commands for vel: " << os.str());
 
-    if (cmd_[0]!=lcmd.data || cmd_[1]!=rcmd.data){
-      lcmd.data=cmd_[0];
-      rcmd.data=cmd_[1];
+    if (cmd_[0] != lcmd.data || cmd_[1] != rcmd.data)
+    {
+      lcmd.data = cmd_[0];
+      rcmd.data = cmd_[1];
       pub_left_motor_value_.publish(lcmd);
       pub_right_motor_value_.publish(rcmd);
     }
