@@ -47,54 +47,91 @@ size_t FakeHardware::pos = 0;
 
 static int received = 0;
 static std::string last;
-static void cb(const std_msgs::String &m) { received++; last = m.data; }
+static void cb(const std_msgs::String &m)
+{
+  received++;
+  last = m.data;
+}
 
 static std::vector<unsigned char> frame(int topic, const std::vector<unsigned char> &payload)
 {
-  std::vector<unsigned char> f = {0xff, 0xfe, (unsigned char)(payload.size() & 255),
-                                  (unsigned char)(payload.size() >> 8)};
+  std::vector<unsigned char> f = { 0xff, 0xfe, (unsigned char)(payload.size() & 255),
+                                   (unsigned char)(payload.size() >> 8) };
   f.push_back(255 - ((f[2] + f[3]) % 256));
   f.push_back(topic & 255);
   f.push_back(topic >> 8);
   int sum = f[5] + f[6];
-  for (unsigned char c : payload) { f.push_back(c); sum += c; }
+  for (unsigned char c : payload)
+  {
+    f.push_back(c);
+    sum += c;
+  }
   f.push_back(255 - (sum % 256));
   return f;
 }
 
 int main(int argc, char **argv)
 {
-  if (argc < 2) return 2;
+  if (argc < 2)
+    return 2;
   std::string mode = argv[1];
-  if (mode == "alltypes")          // fill, serialize, print
+  if (mode == "alltypes")  // fill, serialize, print
   {
     static unsigned char buf[4096];
     rs_test::AllTypes m;
-    m.b = true; m.i8 = -8; m.u8 = 200; m.by = -3; m.ch = 'x';
-    m.i16 = -1600; m.u16 = 60000; m.i32 = -320000; m.u32 = 4000000000UL;
-    m.i64 = -64000000000LL; m.u64 = 18000000000000000000ULL;
-    m.f32 = 3.25f; m.f64 = 1.5; m.s = "hello";
-    m.t.sec = 1700000000; m.t.nsec = 123456789; m.d.sec = -5; m.d.nsec = 500000000;
-    m.header.seq = 7; m.header.stamp.sec = 11; m.header.stamp.nsec = 22; m.header.frame_id = "base";
-    m.p.x = 0.5; m.p.y = -2.0; m.p.z = 1e10;
-    m.fixed[0] = 1; m.fixed[1] = -2; m.fixed[2] = 3;
-    float f64s[] = {0.25f, -3.0f};
-    m.f64s_length = 2; m.f64s = f64s;
-    const char *names[] = {"a", "", "long name"};
-    m.names_length = 3; m.names = names;
+    m.b = true;
+    m.i8 = -8;
+    m.u8 = 200;
+    m.by = -3;
+    m.ch = 'x';
+    m.i16 = -1600;
+    m.u16 = 60000;
+    m.i32 = -320000;
+    m.u32 = 4000000000UL;
+    m.i64 = -64000000000LL;
+    m.u64 = 18000000000000000000ULL;
+    m.f32 = 3.25f;
+    m.f64 = 1.5;
+    m.s = "hello";
+    m.t.sec = 1700000000;
+    m.t.nsec = 123456789;
+    m.d.sec = -5;
+    m.d.nsec = 500000000;
+    m.header.seq = 7;
+    m.header.stamp.sec = 11;
+    m.header.stamp.nsec = 22;
+    m.header.frame_id = "base";
+    m.p.x = 0.5;
+    m.p.y = -2.0;
+    m.p.z = 1e10;
+    m.fixed[0] = 1;
+    m.fixed[1] = -2;
+    m.fixed[2] = 3;
+    float f64s[] = { 0.25f, -3.0f };
+    m.f64s_length = 2;
+    m.f64s = f64s;
+    const char *names[] = { "a", "", "long name" };
+    m.names_length = 3;
+    m.names = names;
     geometry_msgs::Point pts[2];
-    pts[0].x = 1; pts[1].z = -1;
-    m.points_length = 2; m.points = pts;
-    uint8_t bytes[] = {0, 255, 128};
-    m.bytes_length = 3; m.bytes = bytes;
+    pts[0].x = 1;
+    pts[1].z = -1;
+    m.points_length = 2;
+    m.points = pts;
+    uint8_t bytes[] = { 0, 255, 128 };
+    m.bytes_length = 3;
+    m.bytes = bytes;
     int n = m.serialize(buf);
     printf("%d %d\n", n, m.serializedLength());
     hex(buf, n);
-    m.f64s = nullptr; m.names = nullptr; m.points = nullptr; m.bytes = nullptr;
+    m.f64s = nullptr;
+    m.names = nullptr;
+    m.points = nullptr;
+    m.bytes = nullptr;
     m.f64s_length = m.names_length = m.points_length = m.bytes_length = 0;
     return 0;
   }
-  if (mode == "roundtrip")         // deserialize argv[2], serialize again
+  if (mode == "roundtrip")  // deserialize argv[2], serialize again
   {
     std::vector<unsigned char> in = unhex(argv[2]);
     in.resize(in.size() + 8);
@@ -104,7 +141,10 @@ int main(int argc, char **argv)
     int n = m.serialize(buf);
     printf("%d %d %s %s\n", used, n, m.s, m.names_length > 2 ? m.names[2] : "?");
     hex(buf, n);
-    free(m.f64s); free(m.names); free(m.points); free(m.bytes);
+    free(m.f64s);
+    free(m.names);
+    free(m.points);
+    free(m.bytes);
     return 0;
   }
   if (mode == "srv")
@@ -114,7 +154,7 @@ int main(int argc, char **argv)
     printf("%s %s %s %s\n", req.getType(), req.getMD5(), res.getType(), res.getMD5());
     return 0;
   }
-  if (mode == "avr64")             // float -> 8 wire bytes, for each argv
+  if (mode == "avr64")  // float -> 8 wire bytes, for each argv
   {
     for (int i = 2; i < argc; i++)
     {
@@ -124,7 +164,7 @@ int main(int argc, char **argv)
     }
     return 0;
   }
-  if (mode == "avr64in")           // 8 wire bytes (hex) -> float bits
+  if (mode == "avr64in")  // 8 wire bytes (hex) -> float bits
   {
     for (int i = 2; i < argc; i++)
     {
@@ -137,9 +177,9 @@ int main(int argc, char **argv)
     }
     return 0;
   }
-  if (mode == "nodehandle")        // negotiation, an oversized frame, then a good one
+  if (mode == "nodehandle")  // negotiation, an oversized frame, then a good one
   {
-    ros::NodeHandle_<FakeHardware, 2, 2, 64, 128> nh;   // 64-byte input, 128-byte output
+    ros::NodeHandle_<FakeHardware, 2, 2, 64, 128> nh;  // 64-byte input, 128-byte output
     std_msgs::String s;
     ros::Publisher pub("chatter", &s);
     ros::Subscriber<std_msgs::String> sub("words", cb);
@@ -147,16 +187,17 @@ int main(int argc, char **argv)
     nh.advertise(pub);
     nh.subscribe(sub);
     FakeHardware::out.clear();
-    FakeHardware::in = frame(0, {});                        // topic request
+    FakeHardware::in = frame(0, {});  // topic request
     nh.spinOnce();
     printf("configured %d\n", nh.connected());
     hex(FakeHardware::out.data(), FakeHardware::out.size());
     // a frame larger than the 64-byte input buffer, then a good one on the subscriber id
     std::vector<unsigned char> big(300, 'A');
     std::vector<unsigned char> in = frame(100, big);
-    std::vector<unsigned char> good = frame(100, {5, 0, 0, 0, 'h', 'e', 'l', 'l', 'o'});
+    std::vector<unsigned char> good = frame(100, { 5, 0, 0, 0, 'h', 'e', 'l', 'l', 'o' });
     in.insert(in.end(), good.begin(), good.end());
-    FakeHardware::in = in; FakeHardware::pos = 0;
+    FakeHardware::in = in;
+    FakeHardware::pos = 0;
     FakeHardware::ms += 1;
     nh.spinOnce();
     printf("received %d %s\n", received, last.c_str());

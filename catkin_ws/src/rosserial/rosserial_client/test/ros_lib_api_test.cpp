@@ -106,19 +106,27 @@ TEST(Time, SecondsAndNanoseconds)
 
 TEST(Float64, RoundTripGivesTheSameFloat)
 {
-  const double cases[] = {0.0, 10.0, -50.2, 0.1, M_PI, -M_PI, 3.4e38, -3.4e38, 1e-38, 1e-39,
-                          -1e-39, 3.14159e-43, 1e-45, 0.99999999999999, INFINITY, -INFINITY,
-                          1e39};
+  const double cases[] = { 0.0,      10.0,      -50.2, 0.1,    M_PI,        -M_PI, 3.4e38,
+                           -3.4e38,  1e-38,     1e-39, -1e-39, 3.14159e-43, 1e-45, 0.99999999999999,
+                           INFINITY, -INFINITY, 1e39 };
   for (double c : cases)
   {
-    union { double val; unsigned char buffer[8]; } u;
+    union
+    {
+      double val;
+      unsigned char buffer[8];
+    } u;
     ros::Msg::serializeAvrFloat64(u.buffer, (float)c);
     float back = 0;
     ros::Msg::deserializeAvrFloat64(u.buffer, &back);
     EXPECT_EQ((float)c, (float)u.val) << c;
     EXPECT_EQ((float)c, back) << c;
   }
-  union { double val; unsigned char buffer[8]; } n;
+  union
+  {
+    double val;
+    unsigned char buffer[8];
+  } n;
   ros::Msg::serializeAvrFloat64(n.buffer, NAN);
   float back = 0;
   ros::Msg::deserializeAvrFloat64(n.buffer, &back);
@@ -129,7 +137,7 @@ TEST(Float64, RoundTripGivesTheSameFloat)
 static bool called;
 unsigned char buffer[1];
 
-class PlainMsg   // not a ros::Msg: a subscriber needs only these four members
+class PlainMsg  // not a ros::Msg: a subscriber needs only these four members
 {
 public:
   int serialize(unsigned char *) const { return 0; }
@@ -152,7 +160,7 @@ TEST(Subscriber, FreeAndMemberCallbacks)
   a.callback(buffer);
   EXPECT_TRUE(called);
   EXPECT_STREQ(a.getMsgType(), "pkg/Plain");
-  EXPECT_EQ(a.getEndpointType(), 1);   // rosserial_msgs::TopicInfo::ID_SUBSCRIBER
+  EXPECT_EQ(a.getEndpointType(), 1);  // rosserial_msgs::TopicInfo::ID_SUBSCRIBER
   Owner o;
   ros::Subscriber<PlainMsg, Owner> b("t", &Owner::memberCb, &o);
   called = false;

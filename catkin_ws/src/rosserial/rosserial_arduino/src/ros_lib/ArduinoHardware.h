@@ -29,7 +29,9 @@ public:
 #if defined(USE_USBCON)
     // let the USB connection come up
     uint32_t start = millis();
-    while (!(*iostream) && millis() - start < 3000) {}
+    while (!(*iostream) && millis() - start < 3000)
+    {
+    }
 #endif
     iostream->begin(baud_);
   }

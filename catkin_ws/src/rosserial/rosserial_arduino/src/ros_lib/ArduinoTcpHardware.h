@@ -38,16 +38,13 @@ public:
 
   IPAddress getLocalIP() { return ROSSERIAL_NETWORK.localIP(); }
 
-  void init()
-  {
-    connect();
-  }
+  void init() { connect(); }
 
   int read()
   {
     if (tcp_.connected())
-      return tcp_.read();        // -1 when nothing is waiting
-    connect();                   // the server went away or restarted: try again
+      return tcp_.read();  // -1 when nothing is waiting
+    connect();             // the server went away or restarted: try again
     return -1;
   }
 
@@ -65,7 +62,7 @@ protected:
     if (tcp_.connect(server_, port_))
     {
 #if defined(ESP8266) || defined(ESP32)
-      tcp_.setNoDelay(true);     // a frame goes out at once, not after Nagle's delay
+      tcp_.setNoDelay(true);  // a frame goes out at once, not after Nagle's delay
 #endif
     }
   }

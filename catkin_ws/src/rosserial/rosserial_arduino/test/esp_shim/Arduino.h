@@ -31,14 +31,15 @@ inline void delay(unsigned long ms) { usleep(ms * 1000); }
 class IPAddress
 {
 public:
-  IPAddress() : b_{0, 0, 0, 0} {}
-  IPAddress(uint8_t a, uint8_t b, uint8_t c, uint8_t d) : b_{a, b, c, d} {}
+  IPAddress() : b_{ 0, 0, 0, 0 } {}
+  IPAddress(uint8_t a, uint8_t b, uint8_t c, uint8_t d) : b_{ a, b, c, d } {}
   std::string toString() const
   {
     char s[20];
     snprintf(s, sizeof(s), "%u.%u.%u.%u", b_[0], b_[1], b_[2], b_[3]);
     return s;
   }
+
 private:
   uint8_t b_[4];
 };
@@ -48,7 +49,11 @@ class ShimSerial
 public:
   void begin(long) {}
   void print(const char* s) { fputs(s, stdout); }
-  void println(const char* s) { puts(s); fflush(stdout); }
+  void println(const char* s)
+  {
+    puts(s);
+    fflush(stdout);
+  }
   void println(const IPAddress& a) { println(a.toString().c_str()); }
 };
 static ShimSerial Serial;

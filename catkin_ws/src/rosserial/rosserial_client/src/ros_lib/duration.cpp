@@ -19,7 +19,7 @@ void normalizeSecNSecSigned(int32_t &sec, int32_t &nsec)
 Duration &Duration::operator+=(const Duration &rhs)
 {
   sec += rhs.sec;
-  nsec += rhs.nsec;   // both < 1e9: no overflow
+  nsec += rhs.nsec;  // both < 1e9: no overflow
   normalizeSecNSecSigned(sec, nsec);
   return *this;
 }

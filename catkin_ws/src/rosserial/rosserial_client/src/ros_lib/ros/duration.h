@@ -16,10 +16,7 @@ public:
   int32_t sec, nsec;
 
   Duration() : sec(0), nsec(0) {}
-  Duration(int32_t _sec, int32_t _nsec) : sec(_sec), nsec(_nsec)
-  {
-    normalizeSecNSecSigned(sec, nsec);
-  }
+  Duration(int32_t _sec, int32_t _nsec) : sec(_sec), nsec(_nsec) { normalizeSecNSecSigned(sec, nsec); }
   explicit Duration(double t) : sec(0), nsec(0) { fromSec(t); }
 
   double toSec() const { return (double)sec + 1e-9 * (double)nsec; }
@@ -44,10 +41,29 @@ public:
   Duration &operator-=(const Duration &rhs);
   Duration &operator*=(double scale);
 
-  Duration operator+(const Duration &rhs) const { Duration d(*this); return d += rhs; }
-  Duration operator-(const Duration &rhs) const { Duration d(*this); return d -= rhs; }
-  Duration operator-() const { Duration d(*this); d.sec = -sec; d.nsec = -nsec; normalizeSecNSecSigned(d.sec, d.nsec); return d; }
-  Duration operator*(double scale) const { Duration d(*this); return d *= scale; }
+  Duration operator+(const Duration &rhs) const
+  {
+    Duration d(*this);
+    return d += rhs;
+  }
+  Duration operator-(const Duration &rhs) const
+  {
+    Duration d(*this);
+    return d -= rhs;
+  }
+  Duration operator-() const
+  {
+    Duration d(*this);
+    d.sec = -sec;
+    d.nsec = -nsec;
+    normalizeSecNSecSigned(d.sec, d.nsec);
+    return d;
+  }
+  Duration operator*(double scale) const
+  {
+    Duration d(*this);
+    return d *= scale;
+  }
 
   bool operator==(const Duration &rhs) const { return sec == rhs.sec && nsec == rhs.nsec; }
   bool operator!=(const Duration &rhs) const { return !(*this == rhs); }

@@ -42,14 +42,22 @@ public:
 
   static int serializeFloat32(unsigned char *out, float f)
   {
-    union { float real; uint32_t base; } u;
+    union
+    {
+      float real;
+      uint32_t base;
+    } u;
     u.real = f;
     return serializeUInt<uint32_t>(out, u.base);
   }
 
   static float deserializeFloat32(const unsigned char *in)
   {
-    union { float real; uint32_t base; } u;
+    union
+    {
+      float real;
+      uint32_t base;
+    } u;
     u.base = deserializeUInt<uint32_t>(in);
     return u.real;
   }
@@ -58,7 +66,11 @@ public:
   {
     if (sizeof(double) == 4)
       return serializeAvrFloat64(out, (float)d);
-    union { double real; uint64_t base; } u;
+    union
+    {
+      double real;
+      uint64_t base;
+    } u;
     u.real = d;
     return serializeUInt<uint64_t>(out, u.base);
   }
@@ -71,7 +83,11 @@ public:
       deserializeAvrFloat64(in, &f);
       return f;
     }
-    union { double real; uint64_t base; } u;
+    union
+    {
+      double real;
+      uint64_t base;
+    } u;
     u.base = deserializeUInt<uint64_t>(in);
     return u.real;
   }
@@ -81,18 +97,26 @@ public:
   // set only when f < 0 (so -0.0 goes out as +0.0 and NaN as a positive NaN).
   static int serializeAvrFloat64(unsigned char *o, const float f)
   {
-    union { float real; uint32_t base; } u;
+    union
+    {
+      float real;
+      uint32_t base;
+    } u;
     u.real = f;
     int32_t exp = (int32_t)((u.base >> 23) & 0xFF);
     uint32_t mant = u.base & 0x7FFFFFUL;
     if (exp == 0xFF)
-      exp = 0x7FF;                          // inf / NaN
+      exp = 0x7FF;  // inf / NaN
     else if (exp != 0)
-      exp += 1023 - 127;                    // normal
+      exp += 1023 - 127;  // normal
     else if (mant != 0)
     {
-      exp = 1023 - 126;                     // subnormal float: normalise
-      while (!(mant & 0x800000UL)) { mant <<= 1; --exp; }
+      exp = 1023 - 126;  // subnormal float: normalise
+      while (!(mant & 0x800000UL))
+      {
+        mant <<= 1;
+        --exp;
+      }
       mant &= 0x7FFFFFUL;
     }
     uint32_t hi = ((uint32_t)exp << 20) | (mant >> 3);
@@ -113,32 +137,36 @@ public:
     const uint32_t lo = deserializeUInt<uint32_t>(i);
     const uint32_t hi = deserializeUInt<uint32_t>(i + 4);
     int32_t exp = (int32_t)((hi >> 20) & 0x7FF);
-    uint32_t mant = ((hi & 0xFFFFFUL) << 4) | (lo >> 28);   // top 24 bits
+    uint32_t mant = ((hi & 0xFFFFFUL) << 4) | (lo >> 28);  // top 24 bits
     const int32_t e = exp - 1023;
     if (exp == 0x7FF)
       exp = 0xFF;
     else if (e > 127)
     {
-      exp = 0xFF;                           // too large: inf
+      exp = 0xFF;  // too large: inf
       mant = 0;
     }
     else if (e >= -126)
-      exp = e + 127;                        // normal
+      exp = e + 127;  // normal
     else if (e < -150)
     {
-      exp = 0;                              // too small (or 0): 0
+      exp = 0;  // too small (or 0): 0
       mant = 0;
     }
     else
     {
-      mant = (mant | 0x1000000UL) >> (-126 - e);           // a subnormal float
+      mant = (mant | 0x1000000UL) >> (-126 - e);  // a subnormal float
       exp = 0;
     }
     if (mant != 0xFFFFFFUL)
-      mant += 1;                            // round the 24th bit half up
+      mant += 1;  // round the 24th bit half up
     mant >>= 1;
     uint32_t out = mant | ((uint32_t)exp << 23) | (hi & 0x80000000UL);
-    union { float real; uint32_t base; } u;
+    union
+    {
+      float real;
+      uint32_t base;
+    } u;
     u.base = out;
     *f = u.real;
     return 8;
@@ -182,10 +210,7 @@ public:
     return 4 + n;
   }
 
-  static int stringLength(const char *s)
-  {
-    return 4 + (s ? (int)strlen(s) : 0);
-  }
+  static int stringLength(const char *s) { return 4 + (s ? (int)strlen(s) : 0); }
 };
 
 }  // namespace ros

@@ -43,8 +43,8 @@ const uint8_t MODE_MSG_CHECKSUM = 8;
 
 const uint8_t SERIAL_MSG_TIMEOUT = 20;  // ms a frame may take after its first 0xFF
 
-template <class Hardware, int MAX_SUBSCRIBERS = 25, int MAX_PUBLISHERS = 25,
-          int INPUT_SIZE = 512, int OUTPUT_SIZE = 512>
+template <class Hardware, int MAX_SUBSCRIBERS = 25, int MAX_PUBLISHERS = 25, int INPUT_SIZE = 512,
+          int OUTPUT_SIZE = 512>
 class NodeHandle_ : public NodeHandleBase_
 {
 protected:

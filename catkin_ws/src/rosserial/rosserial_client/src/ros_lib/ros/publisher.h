@@ -12,12 +12,14 @@ class Publisher
 {
 public:
   Publisher(const char *topic_name, Msg *msg, int endpoint = rosserial_msgs::TopicInfo::ID_PUBLISHER)
-    : topic_(topic_name), msg_(msg), id_(0), nh_(0), endpoint_(endpoint) {}
+    : topic_(topic_name), msg_(msg), id_(0), nh_(0), endpoint_(endpoint)
+  {
+  }
 
   int publish(const Msg *msg)
   {
     if (nh_ == 0)
-      return -1;   // not advertised
+      return -1;  // not advertised
     return nh_->publish(id_, msg);
   }
   int getEndpointType() { return endpoint_; }

@@ -15,8 +15,9 @@ class ServiceClient : public Subscriber_
 {
 public:
   ServiceClient(const char *topic_name)
-    : pub(topic_name, &req, rosserial_msgs::TopicInfo::ID_SERVICE_CLIENT + rosserial_msgs::TopicInfo::ID_PUBLISHER),
-      ret(0), waiting(false)
+    : pub(topic_name, &req, rosserial_msgs::TopicInfo::ID_SERVICE_CLIENT + rosserial_msgs::TopicInfo::ID_PUBLISHER)
+    , ret(0)
+    , waiting(false)
   {
     this->topic_ = topic_name;
   }

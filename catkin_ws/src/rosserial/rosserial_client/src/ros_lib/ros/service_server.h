@@ -17,8 +17,9 @@ public:
   typedef void (ObjT::*CallbackT)(const MReq &, MRes &);
 
   ServiceServer(const char *topic_name, CallbackT cb, ObjT *obj)
-    : pub(topic_name, &resp, rosserial_msgs::TopicInfo::ID_SERVICE_SERVER + rosserial_msgs::TopicInfo::ID_PUBLISHER),
-      obj_(obj), cb_(cb)
+    : pub(topic_name, &resp, rosserial_msgs::TopicInfo::ID_SERVICE_SERVER + rosserial_msgs::TopicInfo::ID_PUBLISHER)
+    , obj_(obj)
+    , cb_(cb)
   {
     this->topic_ = topic_name;
   }
@@ -52,8 +53,8 @@ public:
   typedef void (*CallbackT)(const MReq &, MRes &);
 
   ServiceServer(const char *topic_name, CallbackT cb)
-    : pub(topic_name, &resp, rosserial_msgs::TopicInfo::ID_SERVICE_SERVER + rosserial_msgs::TopicInfo::ID_PUBLISHER),
-      cb_(cb)
+    : pub(topic_name, &resp, rosserial_msgs::TopicInfo::ID_SERVICE_SERVER + rosserial_msgs::TopicInfo::ID_PUBLISHER)
+    , cb_(cb)
   {
     this->topic_ = topic_name;
   }

@@ -27,8 +27,7 @@ class Subscriber : public Subscriber_
 public:
   typedef void (ObjT::*CallbackT)(const MsgT &);
 
-  Subscriber(const char *topic_name, CallbackT cb, ObjT *obj,
-             int endpoint = rosserial_msgs::TopicInfo::ID_SUBSCRIBER)
+  Subscriber(const char *topic_name, CallbackT cb, ObjT *obj, int endpoint = rosserial_msgs::TopicInfo::ID_SUBSCRIBER)
     : cb_(cb), obj_(obj), endpoint_(endpoint)
   {
     topic_ = topic_name;
@@ -58,8 +57,7 @@ class Subscriber<MsgT, void> : public Subscriber_
 public:
   typedef void (*CallbackT)(const MsgT &);
 
-  Subscriber(const char *topic_name, CallbackT cb,
-             int endpoint = rosserial_msgs::TopicInfo::ID_SUBSCRIBER)
+  Subscriber(const char *topic_name, CallbackT cb, int endpoint = rosserial_msgs::TopicInfo::ID_SUBSCRIBER)
     : cb_(cb), endpoint_(endpoint)
   {
     topic_ = topic_name;

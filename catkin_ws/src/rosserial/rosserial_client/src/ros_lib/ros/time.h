@@ -18,10 +18,7 @@ public:
   uint32_t sec, nsec;
 
   Time() : sec(0), nsec(0) {}
-  Time(uint32_t _sec, uint32_t _nsec) : sec(_sec), nsec(_nsec)
-  {
-    normalizeSecNSec(sec, nsec);
-  }
+  Time(uint32_t _sec, uint32_t _nsec) : sec(_sec), nsec(_nsec) { normalizeSecNSec(sec, nsec); }
   explicit Time(double t) : sec(0), nsec(0) { fromSec(t); }
 
   double toSec() const { return (double)sec + 1e-9 * (double)nsec; }
@@ -41,8 +38,16 @@ public:
   Time &operator+=(const Duration &rhs);
   Time &operator-=(const Duration &rhs);
 
-  Time operator+(const Duration &rhs) const { Time t(*this); return t += rhs; }
-  Time operator-(const Duration &rhs) const { Time t(*this); return t -= rhs; }
+  Time operator+(const Duration &rhs) const
+  {
+    Time t(*this);
+    return t += rhs;
+  }
+  Time operator-(const Duration &rhs) const
+  {
+    Time t(*this);
+    return t -= rhs;
+  }
   Duration operator-(const Time &rhs) const
   {
     return Duration((int32_t)(sec - rhs.sec), (int32_t)nsec - (int32_t)rhs.nsec);
