@@ -89,6 +89,7 @@ class SceneModel:
         self._keys = {}
         self._models = {}           # name -> description Model (kept while its key holds)
         self._grid = self._make_grid()
+        self.extra = []             # ShapeInstances the window adds (the wall tool's preview)
 
     # ------------------------------------------------------------- inputs
     def update_world(self, sdf_text, source='<get_world_sdf>'):
@@ -153,7 +154,7 @@ class SceneModel:
 
     def shapes(self):
         """Visuals of every model (the selected one tinted) + the grid + the selection box."""
-        out = list(self._grid)
+        out = list(self._grid) + list(self.extra)
         if self.world is None:
             return out
         for m in self.world.models:

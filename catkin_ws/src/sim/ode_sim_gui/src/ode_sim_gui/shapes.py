@@ -1,6 +1,7 @@
 """SDF of what the window inserts: Gazebo's simple shapes (unit box / sphere / cylinder as its
 Insert toolbar makes them: 1 m, 1 kg, grey), its three light kinds, library models as
 <include>s; and model names as Gazebo picks them (NAME, then NAME_0, NAME_1, ...). ROS-free."""
+import math
 from xml.sax.saxutils import escape
 
 SHAPES = ('box', 'sphere', 'cylinder')
@@ -69,3 +70,16 @@ def include_sdf(uri):
     """What Insert sends for a library model: <include> of its model:// URI (the simulator
     keeps it as an include in the saved world)."""
     return '<sdf version="1.6"><include><uri>%s</uri></include></sdf>' % escape(uri)
+
+
+def wall_boxes(segments, height, thickness):
+    """[(size (x, y, z), (cx, cy, cz), yaw)] of the walls ode_sim.description.walls.walls_model
+    makes of `segments` [(x0, y0, x1, y1)]: a box of length (segment + thickness), standing on
+    the ground, centred on the segment (the wall tool's preview while drawing)."""
+    out = []
+    for x0, y0, x1, y1 in segments:
+        length = math.hypot(x1 - x0, y1 - y0)
+        out.append(((length + thickness, thickness, height),
+                    ((x0 + x1) / 2.0, (y0 + y1) / 2.0, height / 2.0),
+                    math.atan2(y1 - y0, x1 - x0)))
+    return out

@@ -20,6 +20,7 @@ class View3D(QtWidgets.QWidget):
     selected = QtCore.pyqtSignal(object)          # model name or None
     ground_clicked = QtCore.pyqtSignal(float, float)   # x, y on the ground (placing mode)
     ground_dragged = QtCore.pyqtSignal(float, float, bool)   # x, y, finished (move tool)
+    wall_drawn = QtCore.pyqtSignal(float, float, float, float, bool)   # x0 y0 x1 y1, finished
 
     def __init__(self, scene, parent=None):
         super().__init__(parent)
@@ -34,7 +35,8 @@ class View3D(QtWidgets.QWidget):
         self._press = None
         self._last = None
         self._dirty_scene = True
-        self.mode = 'select'           # 'select' | 'place' | 'translate' | 'rotate'
+        self.mode = 'select'           # 'select' | 'place' | 'translate' | 'rotate' | 'wall'
+        self._wall_start = None
         self.frames = 0
         self.frame_times = []
         self._caster = None
@@ -84,6 +86,9 @@ class View3D(QtWidgets.QWidget):
     def mousePressEvent(self, e):
         self._press = (e.pos(), e.button(), e.modifiers())
         self._last = e.pos()
+        if self.mode == 'wall' and e.button() == QtCore.Qt.LeftButton \
+                and not e.modifiers() & QtCore.Qt.ShiftModifier:
+            self._wall_start = self.camera.ground_point(e.x(), e.y())
         if self.mode in ('translate', 'rotate') and e.button() == QtCore.Qt.LeftButton \
                 and self.scene.selected and not e.modifiers() & QtCore.Qt.ShiftModifier:
             self._drag_start = self.camera.ground_point(e.x(), e.y())
@@ -95,6 +100,12 @@ class View3D(QtWidgets.QWidget):
         self._last = e.pos()
         b = e.buttons()
         shift = e.modifiers() & QtCore.Qt.ShiftModifier
+        if self._wall_start is not None and b & QtCore.Qt.LeftButton:
+            g = self.camera.ground_point(e.x(), e.y())
+            if g is not None:
+                s = self._wall_start
+                self.wall_drawn.emit(float(s[0]), float(s[1]), float(g[0]), float(g[1]), False)
+            return
         if self.mode in ('translate', 'rotate') and b & QtCore.Qt.LeftButton and not shift \
                 and self.scene.selected and getattr(self, '_drag_start', None) is not None:
             g = self.camera.ground_point(e.x(), e.y())
@@ -115,6 +126,12 @@ class View3D(QtWidgets.QWidget):
         pos, button, _ = self._press
         self._press = None
         moved = (e.pos() - pos).manhattanLength()
+        if self._wall_start is not None:
+            s, self._wall_start = self._wall_start, None
+            g = self.camera.ground_point(e.x(), e.y())
+            if g is not None and moved > CLICK_PIXELS:
+                self.wall_drawn.emit(float(s[0]), float(s[1]), float(g[0]), float(g[1]), True)
+            return
         if getattr(self, '_drag_start', None) is not None:
             self._drag_start = None
             if moved > CLICK_PIXELS:

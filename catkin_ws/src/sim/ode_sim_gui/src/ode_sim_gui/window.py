@@ -7,6 +7,7 @@ import time
 import numpy as np
 from PyQt5 import QtCore, QtGui, QtWidgets
 
+from ode_sim.description import walls
 from ode_sim.description.transforms import Pose, quat_from_rpy
 from ode_sim_gui import shapes as shape_sdf
 from ode_sim_gui.client import SimError
@@ -62,6 +63,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.view.selected.connect(self.select)
         self.view.ground_clicked.connect(self._place_at)
         self.view.ground_dragged.connect(self._drag_selected)
+        self.view.wall_drawn.connect(self._wall_drawn)
+        self.wall_segments = []
         self._timers = []
         for ms, fn in ((POLL_MS, self._poll), (STATS_MS, self._update_stats),
                        (ALIVE_MS, self._check_alive)):
@@ -98,6 +101,14 @@ class MainWindow(QtWidgets.QMainWindow):
             self.mode_group.addAction(a)
             self.act_modes[mode] = a
         self.act_modes['select'].setChecked(True)
+        self.act_wall = self._action('Wall', lambda _=False: self.set_mode('wall'), 'W',
+                                     checkable=True,
+                                     tip='Draw walls: drag on the ground; Enter makes them one '
+                                         'static model, Esc drops them')
+        self.mode_group.addAction(self.act_wall)
+        self.act_modes['wall'] = self.act_wall
+        self.act_finish_walls = self._action('Finish Walls', self.finish_walls,
+                                             tip='Enter in the view does the same')
         self.act_shapes = {k: self._action(k.capitalize(), lambda _=False, k=k: self.begin_insert('shape', k),
                                            tip='Insert a %s: click on the ground' % k)
                            for k in shape_sdf.SHAPES}
@@ -134,6 +145,21 @@ class MainWindow(QtWidgets.QMainWindow):
             tb.addAction(a)
         tb.addSeparator()
         tb.addAction(self.act_delete)
+        tb.addSeparator()
+        tb.addAction(self.act_wall)
+        self.spin_wall_height = QtWidgets.QDoubleSpinBox(tb)
+        self.spin_wall_height.setRange(0.05, 20.0)
+        self.spin_wall_height.setValue(walls.DEFAULT_HEIGHT)
+        self.spin_wall_height.setPrefix('h ')
+        self.spin_wall_height.setToolTip('wall height (m)')
+        self.spin_wall_thickness = QtWidgets.QDoubleSpinBox(tb)
+        self.spin_wall_thickness.setRange(0.01, 2.0)
+        self.spin_wall_thickness.setValue(walls.DEFAULT_THICKNESS)
+        self.spin_wall_thickness.setPrefix('t ')
+        self.spin_wall_thickness.setToolTip('wall thickness (m)')
+        tb.addWidget(self.spin_wall_height)
+        tb.addWidget(self.spin_wall_thickness)
+        tb.addAction(self.act_finish_walls)
 
     def _build_bottom_bar(self):
         bar = QtWidgets.QWidget(self)
@@ -290,10 +316,60 @@ class MainWindow(QtWidgets.QMainWindow):
         return ok
 
     def set_mode(self, mode):
+        if self.view.mode == 'wall' and mode != 'wall':
+            self._set_wall_preview([])
+            self.wall_segments = []
         self.view.mode = mode
-        self.act_modes[mode].setChecked(True)
+        if mode in self.act_modes:
+            self.act_modes[mode].setChecked(True)
         if mode != 'place':
             self._pending_insert = None
+        if mode == 'wall':
+            self.statusBar().showMessage('drag on the ground to draw walls; Enter: done, '
+                                         'Esc: drop them', 10000)
+
+    # ----------------------------------------------------------- wall tool
+    def _set_wall_preview(self, segments):
+        from ode_sim.description.model import Geometry, Material
+        from ode_sim.engine.scene import ShapeInstance
+        mat = Material(name='wall_preview', diffuse=(0.9, 0.9, 0.6, 1.0))
+        prev = []
+        for i, (size, c, yaw) in enumerate(shape_sdf.wall_boxes(
+                segments, self.spin_wall_height.value(), self.spin_wall_thickness.value())):
+            prev.append(ShapeInstance(key='wall_preview::%d' % i, model='', link='preview',
+                                      geometry=Geometry(kind='box', size=size),
+                                      static_pose=Pose(c, quat_from_rpy(0.0, 0.0, yaw)),
+                                      color=mat.diffuse, material=mat))
+        self.scene.extra = prev
+        self.view.scene_changed()
+        self.view.update()
+
+    def _wall_drawn(self, x0, y0, x1, y1, finished):
+        seg = (x0, y0, x1, y1)
+        if finished:
+            self.wall_segments.append(seg)
+            self._set_wall_preview(self.wall_segments)
+        else:
+            self._set_wall_preview(self.wall_segments + [seg])
+
+    def finish_walls(self):
+        """The drawn walls become one static model (ode_sim.description.walls), spawned."""
+        segs, self.wall_segments = self.wall_segments, []
+        self._set_wall_preview([])
+        if not segs:
+            return None
+        taken = set(self.scene.model_names())
+        name = shape_sdf.unique_name('walls', taken)
+        try:
+            xml = walls.walls_model(name, segs, self.spin_wall_height.value(),
+                                    self.spin_wall_thickness.value())
+        except Exception as e:  # noqa: BLE001 - ModelError: one line
+            self.statusBar().showMessage(str(e), 10000)
+            return None
+        self._run('insert %s' % name, self.client.spawn_sdf, name, xml, Pose())
+        self.refresh_world()
+        self.set_mode('select')
+        return name
 
     def begin_insert(self, kind, what):
         """Insert: the next click on the ground places it (Esc cancels)."""
@@ -377,6 +453,8 @@ class MainWindow(QtWidgets.QMainWindow):
             self.set_mode('select')
         elif e.key() == QtCore.Qt.Key_Delete:      # a key event the shortcut map did not take
             self.delete_selected()
+        elif e.key() in (QtCore.Qt.Key_Return, QtCore.Qt.Key_Enter) and self.view.mode == 'wall':
+            self.finish_walls()
         super().keyPressEvent(e)
 
     def closeEvent(self, e):
