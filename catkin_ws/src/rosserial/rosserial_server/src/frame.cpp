@@ -41,7 +41,7 @@ FrameParser::Result FrameParser::feed(uint8_t b)
         state_ = LEN_LO;
         return NONE;
       }
-      if (b == 0xFF)          // a run of 0xFF: the last one may start the frame
+      if (b == 0xFF)  // a run of 0xFF: the last one may start the frame
         return NONE;
       state_ = SYNC;
       bad_version_ = b;

@@ -31,6 +31,7 @@ class Gil
 public:
   Gil() : state_(PyGILState_Ensure()) {}
   ~Gil() { PyGILState_Release(state_); }
+
 private:
   PyGILState_STATE state_;
 };
@@ -45,6 +46,7 @@ public:
   Ref& operator=(const Ref&) = delete;
   PyObject* get() const { return o_; }
   explicit operator bool() const { return o_ != nullptr; }
+
 private:
   PyObject* o_;
 };
@@ -87,8 +89,8 @@ PyObject* loadClass(const char* getter, const std::string& type)
   if (!cls || cls.get() == Py_None)
   {
     std::string why = cls ? "" : ": " + pyError();
-    throw std::runtime_error("cannot load the type " + type +
-                             " (is its package built and the workspace sourced?)" + why);
+    throw std::runtime_error("cannot load the type " + type + " (is its package built and the workspace sourced?)" +
+                             why);
   }
   PyObject* out = cls.get();
   Py_INCREF(out);
@@ -135,15 +137,18 @@ const ServiceInfo lookupService(const std::string& service_type)
 
 void warmUpLookups()
 {
-  std::thread([] {
-    try
-    {
-      lookupMessage("std_msgs/Time");
-    }
-    catch (const std::exception&)
-    {
-    }
-  }).detach();
+  std::thread(
+      []
+      {
+        try
+        {
+          lookupMessage("std_msgs/Time");
+        }
+        catch (const std::exception&)
+        {
+        }
+      })
+      .detach();
 }
 
 }  // namespace rosserial_server

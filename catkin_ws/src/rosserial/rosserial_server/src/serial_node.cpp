@@ -15,7 +15,7 @@
 
 int main(int argc, char** argv)
 {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);   // log lines reach a redirected stdout at once
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // log lines reach a redirected stdout at once
   ros::init(argc, argv, "rosserial_server_serial_node");
   ros::NodeHandle pnh("~");
   ros::NodeHandle nh;
@@ -27,7 +27,7 @@ int main(int argc, char** argv)
   pnh.param<double>("sync_timeout", sync_timeout, 15.0);
 
   rosserial_server::warmUpLookups();
-  ros::AsyncSpinner spinner(2);   // subscriptions and service calls beside the read loop
+  ros::AsyncSpinner spinner(2);  // subscriptions and service calls beside the read loop
   spinner.start();
 
   bool announced = false;

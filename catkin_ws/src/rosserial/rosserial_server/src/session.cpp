@@ -22,9 +22,9 @@ namespace rosserial_server
 
 namespace
 {
-const double TOPIC_REQUEST_PERIOD = 1.0;   // s between topic requests until the device answers
-const double SERVICE_TIMEOUT = 5.0;        // s a ROS caller waits for the device's response
-const double REQUIRE_CHECK_DELAY = 1.0;    // s after a topic request: ~require checked
+const double TOPIC_REQUEST_PERIOD = 1.0;  // s between topic requests until the device answers
+const double SERVICE_TIMEOUT = 5.0;       // s a ROS caller waits for the device's response
+const double REQUIRE_CHECK_DELAY = 1.0;   // s after a topic request: ~require checked
 
 template <typename M>
 M decode(const std::vector<uint8_t>& payload)
@@ -84,10 +84,10 @@ struct DeviceServiceEntry
 {
   std::string name, type, request_md5, response_md5;
   std::shared_ptr<FdStream> stream;
-  int request_id = -1;     // the device's subscriber: requests go there
-  int response_id = -1;    // the device's publisher: responses come from there
+  int request_id = -1;   // the device's subscriber: requests go there
+  int response_id = -1;  // the device's publisher: responses come from there
   ros::ServiceServer server;
-  std::mutex call_mutex;   // one call at a time: the device answers in order
+  std::mutex call_mutex;  // one call at a time: the device answers in order
   std::mutex m;
   std::condition_variable cv;
   bool waiting = false, answered = false;
@@ -130,8 +130,7 @@ public:
         lock.lock();
         if (!sent)
           error = "the device of " + e.name + " is gone";
-        else if (!e.cv.wait_for(lock, std::chrono::duration<double>(SERVICE_TIMEOUT),
-                                [&] { return e.answered; }))
+        else if (!e.cv.wait_for(lock, std::chrono::duration<double>(SERVICE_TIMEOUT), [&] { return e.answered; }))
           error = "no response from the device within 5 s";
         else
           ok = true;
@@ -168,14 +167,11 @@ private:
 struct RosServiceEntry
 {
   std::string name, type, md5;
-  int request_id = -1;     // the device's publisher: requests come from there
-  int response_id = -1;    // the device's subscriber: responses go there
+  int request_id = -1;   // the device's publisher: requests come from there
+  int response_id = -1;  // the device's subscriber: responses go there
 };
 
-Session::Session(const ros::NodeHandle& nh, std::shared_ptr<FdStream> stream)
-  : nh_(nh), stream_(stream)
-{
-}
+Session::Session(const ros::NodeHandle& nh, std::shared_ptr<FdStream> stream) : nh_(nh), stream_(stream) {}
 
 Session::~Session()
 {
@@ -202,8 +198,7 @@ void Session::requestTopics()
 
 // The topic names of `param_name` (a list of strings), resolved; false with an error line when
 // it is not such a list. A missing parameter is an empty list.
-static bool requiredTopics(const ros::NodeHandle& nh, const std::string& param_name,
-                           std::vector<std::string>& out)
+static bool requiredTopics(const ros::NodeHandle& nh, const std::string& param_name, std::vector<std::string>& out)
 {
   XmlRpc::XmlRpcValue list;
   if (!ros::param::get(param_name, list))
@@ -217,8 +212,7 @@ static bool requiredTopics(const ros::NodeHandle& nh, const std::string& param_n
   {
     if (list[i].getType() != XmlRpc::XmlRpcValue::TypeString)
     {
-      ROS_ERROR_ONCE("%s must be a list of topic names (item %d is not a string)",
-                     param_name.c_str(), i);
+      ROS_ERROR_ONCE("%s must be a list of topic names (item %d is not a string)", param_name.c_str(), i);
       return false;
     }
     out.push_back(nh.resolveName(static_cast<std::string>(list[i])));
@@ -227,8 +221,7 @@ static bool requiredTopics(const ros::NodeHandle& nh, const std::string& param_n
 }
 
 template <typename M>
-static bool allPresent(const ros::NodeHandle& nh, const std::vector<std::string>& required,
-                       const M& entries)
+static bool allPresent(const ros::NodeHandle& nh, const std::vector<std::string>& required, const M& entries)
 {
   for (const std::string& topic : required)
   {
@@ -247,13 +240,13 @@ void Session::checkRequiredTopics()
   if (!ros::param::has("~require"))
     return;
   std::vector<std::string> pubs, subs;
-  if (!requiredTopics(nh_, "~require/publishers", pubs) ||
-      !requiredTopics(nh_, "~require/subscribers", subs))
+  if (!requiredTopics(nh_, "~require/publishers", pubs) || !requiredTopics(nh_, "~require/subscribers", subs))
     return;
   if (!allPresent(nh_, pubs, publishers_) || !allPresent(nh_, subs, subscribers_))
   {
-    ROS_WARN("Connected client failed to establish the publishers and subscribers dictated by "
-             "require parameter. Re-requesting topics.");
+    ROS_WARN(
+        "Connected client failed to establish the publishers and subscribers dictated by "
+        "require parameter. Re-requesting topics.");
     requestTopics();
   }
 }
@@ -262,7 +255,7 @@ void Session::run(const std::function<bool()>& keep_going)
 {
   last_rx_ = Clock::now();
   requestTopics();
-  std::vector<uint8_t> buf(65536);   // a whole UDP datagram (udp_socket_node) fits
+  std::vector<uint8_t> buf(65536);  // a whole UDP datagram (udp_socket_node) fits
   while (keep_going())
   {
     int n = stream_->read(buf.data(), buf.size(), 100);
@@ -283,14 +276,15 @@ void Session::run(const std::function<bool()>& keep_going)
           }
           catch (const std::exception& e)
           {
-            ROS_ERROR("Error handling a message on topic id %d (%zu bytes): %s",
-                      parser_.topicId(), parser_.payload().size(), e.what());
+            ROS_ERROR("Error handling a message on topic id %d (%zu bytes): %s", parser_.topicId(),
+                      parser_.payload().size(), e.what());
           }
           break;
         case FrameParser::BAD_VERSION:
-          ROS_ERROR("Mismatched protocol version in packet (0x%02x): lost sync or rosserial_python "
-                    "is from different ros release than the rosserial client",
-                    parser_.badVersion());
+          ROS_ERROR(
+              "Mismatched protocol version in packet (0x%02x): lost sync or rosserial_python "
+              "is from different ros release than the rosserial client",
+              parser_.badVersion());
           break;
         case FrameParser::BAD_LENGTH_CHECKSUM:
           ROS_INFO("Wrong checksum for msg length, dropping message.");
@@ -342,7 +336,7 @@ void Session::handle(uint16_t id, const std::vector<uint8_t>& payload)
   {
     case T::ID_PUBLISHER:
       if (payload.empty())
-        requestTopics();     // our ros_lib announces a (re)start with an empty frame
+        requestTopics();  // our ros_lib announces a (re)start with an empty frame
       else
         setupPublisher(decode<T>(payload));
       break;
@@ -384,8 +378,8 @@ void Session::setupPublisher(const rosserial_msgs::TopicInfo& info)
 {
   const MsgInfo mi = lookupMessage(info.message_type);
   if (mi.md5sum != info.md5sum)
-    throw std::runtime_error("Checksum does not match: " + mi.md5sum + "," + info.md5sum +
-                             " (publisher " + info.topic_name + " [" + info.message_type + "])");
+    throw std::runtime_error("Checksum does not match: " + mi.md5sum + "," + info.md5sum + " (publisher " +
+                             info.topic_name + " [" + info.message_type + "])");
   auto& entry = publishers_[info.topic_name];
   if (!entry || entry->type != info.message_type)
   {
@@ -411,8 +405,8 @@ void Session::setupSubscriber(const rosserial_msgs::TopicInfo& info)
 {
   const MsgInfo mi = lookupMessage(info.message_type);
   if (mi.md5sum != info.md5sum)
-    throw std::runtime_error("Checksum does not match: " + mi.md5sum + "," + info.md5sum +
-                             " (subscriber " + info.topic_name + " [" + info.message_type + "])");
+    throw std::runtime_error("Checksum does not match: " + mi.md5sum + "," + info.md5sum + " (subscriber " +
+                             info.topic_name + " [" + info.message_type + "])");
   auto& entry = subscribers_[info.topic_name];
   if (entry && entry->type != info.message_type)
   {
@@ -431,11 +425,12 @@ void Session::setupSubscriber(const rosserial_msgs::TopicInfo& info)
     const int limit = info.buffer_size;
     entry->sub = nh_.subscribe<topic_tools::ShapeShifter>(
         info.topic_name, 10,
-        [stream, id, md5, topic, limit](const topic_tools::ShapeShifter::ConstPtr& m) {
+        [stream, id, md5, topic, limit](const topic_tools::ShapeShifter::ConstPtr& m)
+        {
           if (m->getMD5Sum() != md5 && m->getMD5Sum() != "*")
           {
-            ROS_ERROR_THROTTLE(5.0, "Message on %s has md5 %s, the device expects %s: dropped",
-                               topic.c_str(), m->getMD5Sum().c_str(), md5.c_str());
+            ROS_ERROR_THROTTLE(5.0, "Message on %s has md5 %s, the device expects %s: dropped", topic.c_str(),
+                               m->getMD5Sum().c_str(), md5.c_str());
             return;
           }
           std::vector<uint8_t> data(m->size());
@@ -464,8 +459,8 @@ void Session::setupServiceServer(const rosserial_msgs::TopicInfo& info, bool dev
   const ServiceInfo si = lookupService(info.message_type);
   const std::string& want = device_publisher ? si.response_md5sum : si.request_md5sum;
   if (want != info.md5sum)
-    throw std::runtime_error("Checksum does not match: " + want + "," + info.md5sum +
-                             " (service " + info.topic_name + " [" + info.message_type + "])");
+    throw std::runtime_error("Checksum does not match: " + want + "," + info.md5sum + " (service " + info.topic_name +
+                             " [" + info.message_type + "])");
   auto& entry = device_services_[info.topic_name];
   if (entry && entry->type != info.message_type)
   {
@@ -505,8 +500,8 @@ void Session::setupServiceClient(const rosserial_msgs::TopicInfo& info, bool dev
   const ServiceInfo si = lookupService(info.message_type);
   const std::string& want = device_publisher ? si.request_md5sum : si.response_md5sum;
   if (want != info.md5sum)
-    throw std::runtime_error("Checksum does not match: " + want + "," + info.md5sum +
-                             " (service client " + info.topic_name + ")");
+    throw std::runtime_error("Checksum does not match: " + want + "," + info.md5sum + " (service client " +
+                             info.topic_name + ")");
   auto& entry = ros_services_[info.topic_name];
   if (!entry || entry->type != info.message_type)
   {
@@ -525,36 +520,40 @@ void Session::setupServiceClient(const rosserial_msgs::TopicInfo& info, bool dev
   e->request_id = info.topic_id;
   std::shared_ptr<FdStream> stream = stream_;
   ros::NodeHandle nh = nh_;
-  endpoints_[info.topic_id] = [e, stream, nh](const std::vector<uint8_t>& p) {
+  endpoints_[info.topic_id] = [e, stream, nh](const std::vector<uint8_t>& p)
+  {
     // the call runs beside the read loop: the device keeps being served while ROS answers
-    std::thread([e, stream, nh, p]() mutable {
-      ros::ServiceClientOptions ops(nh.resolveName(e->name), e->md5, false, ros::M_string());
-      ros::ServiceClient client = nh.serviceClient(ops);
-      if (!client.waitForExistence(ros::Duration(10.0)))
-      {
-        ROS_ERROR("Service %s called by the device does not exist", e->name.c_str());
-        return;
-      }
-      ros::SerializedMessage req;
-      req.num_bytes = p.size() + 4;
-      req.buf.reset(new uint8_t[req.num_bytes]);
-      ser::OStream s(req.buf.get(), (uint32_t)req.num_bytes);
-      ser::serialize(s, (uint32_t)p.size());
-      if (!p.empty())
-        memcpy(s.advance((uint32_t)p.size()), p.data(), p.size());
-      req.message_start = req.buf.get() + 4;
-      ros::SerializedMessage res;
-      if (!client.call(req, res, e->md5))
-      {
-        ROS_ERROR("Call of service %s for the device failed", e->name.c_str());
-        return;
-      }
-      if (e->response_id < 0)
-        return;
-      std::vector<uint8_t> data = body(res);
-      std::vector<uint8_t> frame = encodeFrame((uint16_t)e->response_id, data.data(), data.size());
-      stream->write(frame.data(), frame.size());
-    }).detach();
+    std::thread(
+        [e, stream, nh, p]() mutable
+        {
+          ros::ServiceClientOptions ops(nh.resolveName(e->name), e->md5, false, ros::M_string());
+          ros::ServiceClient client = nh.serviceClient(ops);
+          if (!client.waitForExistence(ros::Duration(10.0)))
+          {
+            ROS_ERROR("Service %s called by the device does not exist", e->name.c_str());
+            return;
+          }
+          ros::SerializedMessage req;
+          req.num_bytes = p.size() + 4;
+          req.buf.reset(new uint8_t[req.num_bytes]);
+          ser::OStream s(req.buf.get(), (uint32_t)req.num_bytes);
+          ser::serialize(s, (uint32_t)p.size());
+          if (!p.empty())
+            memcpy(s.advance((uint32_t)p.size()), p.data(), p.size());
+          req.message_start = req.buf.get() + 4;
+          ros::SerializedMessage res;
+          if (!client.call(req, res, e->md5))
+          {
+            ROS_ERROR("Call of service %s for the device failed", e->name.c_str());
+            return;
+          }
+          if (e->response_id < 0)
+            return;
+          std::vector<uint8_t> data = body(res);
+          std::vector<uint8_t> frame = encodeFrame((uint16_t)e->response_id, data.data(), data.size());
+          stream->write(frame.data(), frame.size());
+        })
+        .detach();
   };
 }
 
@@ -572,7 +571,7 @@ void Session::handleParameterRequest(const std::vector<uint8_t>& payload)
 {
   const rosserial_msgs::RequestParamRequest req = decode<rosserial_msgs::RequestParamRequest>(payload);
   XmlRpc::XmlRpcValue value;
-  if (!ros::param::get(req.name, value))   // relative to the node, "~x" = its private x
+  if (!ros::param::get(req.name, value))  // relative to the node, "~x" = its private x
   {
     ROS_ERROR("Parameter %s does not exist", req.name.c_str());
     return;
@@ -630,12 +629,23 @@ void Session::handleLog(const std::vector<uint8_t>& payload)
   const rosserial_msgs::Log m = decode<rosserial_msgs::Log>(payload);
   switch (m.level)
   {
-    case rosserial_msgs::Log::ROSDEBUG: ROS_DEBUG("%s", m.msg.c_str()); break;
-    case rosserial_msgs::Log::INFO: ROS_INFO("%s", m.msg.c_str()); break;
-    case rosserial_msgs::Log::WARN: ROS_WARN("%s", m.msg.c_str()); break;
-    case rosserial_msgs::Log::ERROR: ROS_ERROR("%s", m.msg.c_str()); break;
-    case rosserial_msgs::Log::FATAL: ROS_FATAL("%s", m.msg.c_str()); break;
-    default: ROS_INFO("%s", m.msg.c_str());
+    case rosserial_msgs::Log::ROSDEBUG:
+      ROS_DEBUG("%s", m.msg.c_str());
+      break;
+    case rosserial_msgs::Log::INFO:
+      ROS_INFO("%s", m.msg.c_str());
+      break;
+    case rosserial_msgs::Log::WARN:
+      ROS_WARN("%s", m.msg.c_str());
+      break;
+    case rosserial_msgs::Log::ERROR:
+      ROS_ERROR("%s", m.msg.c_str());
+      break;
+    case rosserial_msgs::Log::FATAL:
+      ROS_FATAL("%s", m.msg.c_str());
+      break;
+    default:
+      ROS_INFO("%s", m.msg.c_str());
   }
 }
 

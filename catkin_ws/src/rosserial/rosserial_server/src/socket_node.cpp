@@ -24,7 +24,7 @@
 
 int main(int argc, char** argv)
 {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);   // log lines reach a redirected stdout at once
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);  // log lines reach a redirected stdout at once
   ros::init(argc, argv, "rosserial_server_socket_node");
   ros::NodeHandle pnh("~");
   ros::NodeHandle nh;
@@ -61,7 +61,7 @@ int main(int argc, char** argv)
   std::list<std::thread> sessions;
   while (ros::ok())
   {
-    pollfd p{server, POLLIN, 0};
+    pollfd p{ server, POLLIN, 0 };
     if (::poll(&p, 1, 200) <= 0)
       continue;
     sockaddr_in peer;
@@ -75,11 +75,13 @@ int main(int argc, char** argv)
     const std::string name = std::string(host) + ":" + std::to_string(ntohs(peer.sin_port));
     ROS_INFO("Established a socket connection from %s", name.c_str());
     auto stream = std::make_shared<rosserial_server::FdStream>(fd, name);
-    sessions.emplace_back([nh, stream, sync_timeout]() {
-      rosserial_server::Session session(nh, stream);
-      session.setSyncTimeout(sync_timeout);
-      session.run([] { return ros::ok(); });
-    });
+    sessions.emplace_back(
+        [nh, stream, sync_timeout]()
+        {
+          rosserial_server::Session session(nh, stream);
+          session.setSyncTimeout(sync_timeout);
+          session.run([] { return ros::ok(); });
+        });
   }
   ::close(server);
   for (auto& t : sessions)

@@ -11,10 +11,7 @@
 namespace rosserial_server
 {
 
-FdStream::~FdStream()
-{
-  close();
-}
+FdStream::~FdStream() { close(); }
 
 void FdStream::close()
 {
@@ -33,7 +30,7 @@ int FdStream::read(uint8_t* buf, size_t size, int timeout_ms)
       return -1;
     fd = fd_;
   }
-  pollfd p{fd, POLLIN, 0};
+  pollfd p{ fd, POLLIN, 0 };
   int r = ::poll(&p, 1, timeout_ms);
   if (r < 0)
     return errno == EINTR ? 0 : -1;
@@ -47,7 +44,7 @@ int FdStream::read(uint8_t* buf, size_t size, int timeout_ms)
     // ECONNREFUSED: a connected UDP socket's client is not listening (yet): nothing to read
     if (n < 0 && (errno == EAGAIN || errno == EINTR || errno == ECONNREFUSED))
       return 0;
-    return -1;      // 0: end of stream; EIO: the pty's other side closed
+    return -1;  // 0: end of stream; EIO: the pty's other side closed
   }
   if (p.revents & (POLLHUP | POLLERR | POLLNVAL))
     return -1;
@@ -73,12 +70,12 @@ bool FdStream::write(const uint8_t* data, size_t size)
     if (n < 0 && errno == EINTR)
       continue;
     if (n < 0 && errno == ECONNREFUSED)
-      return true;    // a UDP client not listening (yet): the datagram is lost, as UDP loses it
+      return true;  // a UDP client not listening (yet): the datagram is lost, as UDP loses it
     if (n < 0 && errno == EAGAIN)
     {
-      pollfd p{fd_, POLLOUT, 0};
+      pollfd p{ fd_, POLLOUT, 0 };
       if (::poll(&p, 1, 100) == 0 && ++stalls > 50)
-        return false;   // 5 s without room: the device stopped reading
+        return false;  // 5 s without room: the device stopped reading
       continue;
     }
     return false;
@@ -90,22 +87,38 @@ static speed_t baudConstant(int baud)
 {
   switch (baud)
   {
-    case 1200: return B1200;
-    case 2400: return B2400;
-    case 4800: return B4800;
-    case 9600: return B9600;
-    case 19200: return B19200;
-    case 38400: return B38400;
-    case 57600: return B57600;
-    case 115200: return B115200;
-    case 230400: return B230400;
-    case 460800: return B460800;
-    case 500000: return B500000;
-    case 576000: return B576000;
-    case 921600: return B921600;
-    case 1000000: return B1000000;
-    case 2000000: return B2000000;
-    default: return 0;
+    case 1200:
+      return B1200;
+    case 2400:
+      return B2400;
+    case 4800:
+      return B4800;
+    case 9600:
+      return B9600;
+    case 19200:
+      return B19200;
+    case 38400:
+      return B38400;
+    case 57600:
+      return B57600;
+    case 115200:
+      return B115200;
+    case 230400:
+      return B230400;
+    case 460800:
+      return B460800;
+    case 500000:
+      return B500000;
+    case 576000:
+      return B576000;
+    case 921600:
+      return B921600;
+    case 1000000:
+      return B1000000;
+    case 2000000:
+      return B2000000;
+    default:
+      return 0;
   }
 }
 

@@ -44,8 +44,7 @@ int openUdp(int server_port, const sockaddr_in& client)
   addr.sin_family = AF_INET;
   addr.sin_addr.s_addr = htonl(INADDR_ANY);
   addr.sin_port = htons((uint16_t)server_port);
-  if (::bind(fd, (sockaddr*)&addr, sizeof(addr)) != 0 ||
-      ::connect(fd, (const sockaddr*)&client, sizeof(client)) != 0)
+  if (::bind(fd, (sockaddr*)&addr, sizeof(addr)) != 0 || ::connect(fd, (const sockaddr*)&client, sizeof(client)) != 0)
   {
     ROS_FATAL("Cannot use UDP port %d towards the client: %s", server_port, std::strerror(errno));
     ::close(fd);
@@ -83,20 +82,18 @@ int main(int argc, char** argv)
   rosserial_server::warmUpLookups();
   ros::AsyncSpinner spinner(2);
   spinner.start();
-  ROS_INFO("rosserial UDP session on port %d with %s:%d", server_port, client_addr.c_str(),
-           client_port);
+  ROS_INFO("rosserial UDP session on port %d with %s:%d", server_port, client_addr.c_str(), client_port);
   while (ros::ok())
   {
     const int fd = openUdp(server_port, client);
     if (fd < 0)
       return 1;
-    auto stream = std::make_shared<rosserial_server::FdStream>(
-        fd, client_addr + ":" + std::to_string(client_port));
+    auto stream = std::make_shared<rosserial_server::FdStream>(fd, client_addr + ":" + std::to_string(client_port));
     rosserial_server::Session session(nh, stream);
     session.setSyncTimeout(sync_timeout);
     session.run([] { return ros::ok(); });
     if (ros::ok())
-      ros::WallDuration(0.5).sleep();   // the socket failed: start over
+      ros::WallDuration(0.5).sleep();  // the socket failed: start over
   }
   spinner.stop();
   return 0;

@@ -112,7 +112,7 @@ public:
       if (n > 0)
         done += n;
       else if (udp_ && errno == ECONNREFUSED)
-        return;     // the server is not there yet: the datagram is lost
+        return;  // the server is not there yet: the datagram is lost
       else
         usleep(1000);
     }
@@ -181,7 +181,7 @@ int main(int argc, char** argv)
   nh.advertiseService(server);
   nh.serviceClient(client);
   char hello[] = "from-rosserial-client";
-  bool params_done = false, called = getenv("CALL_ROS_SRV") == nullptr;   // calls block until answered
+  bool params_done = false, called = getenv("CALL_ROS_SRV") == nullptr;  // calls block until answered
   int loops = 0;
   while (true)
   {
@@ -195,8 +195,8 @@ int main(int argc, char** argv)
         bool b = false;
         char text[40] = "";
         char* tp = text;
-        bool ok = nh.getParam("int_value", &i) && nh.getParam("float_value", &f) &&
-                  nh.getParam("bool_value", &b) && nh.getParam("string_value", &tp);
+        bool ok = nh.getParam("int_value", &i) && nh.getParam("float_value", &f) && nh.getParam("bool_value", &b) &&
+                  nh.getParam("string_value", &tp);
         printf("params %d %d %g %d %s\n", ok, i, f, b, text);
         params_done = true;
       }

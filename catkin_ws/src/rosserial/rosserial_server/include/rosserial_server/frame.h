@@ -35,7 +35,18 @@ public:
   uint8_t badVersion() const { return bad_version_; }
 
 private:
-  enum State { SYNC, VERSION, LEN_LO, LEN_HI, LEN_CHK, TOPIC_LO, TOPIC_HI, DATA, CHECKSUM };
+  enum State
+  {
+    SYNC,
+    VERSION,
+    LEN_LO,
+    LEN_HI,
+    LEN_CHK,
+    TOPIC_LO,
+    TOPIC_HI,
+    DATA,
+    CHECKSUM
+  };
   State state_ = SYNC;
   size_t max_length_;
   uint16_t length_ = 0;

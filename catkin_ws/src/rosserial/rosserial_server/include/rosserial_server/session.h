@@ -69,8 +69,8 @@ private:
   Clock::time_point last_rx_, last_request_;
   int out_buffer_ = -1, in_buffer_ = -1;
 
-  std::map<std::string, std::shared_ptr<PublisherEntry>> publishers_;       // by topic
-  std::map<std::string, std::shared_ptr<SubscriberEntry>> subscribers_;     // by topic
+  std::map<std::string, std::shared_ptr<PublisherEntry>> publishers_;    // by topic
+  std::map<std::string, std::shared_ptr<SubscriberEntry>> subscribers_;  // by topic
   std::map<std::string, std::shared_ptr<DeviceServiceEntry>> device_services_;
   std::map<std::string, std::shared_ptr<RosServiceEntry>> ros_services_;
   // topic id -> what handles a frame from the device on it

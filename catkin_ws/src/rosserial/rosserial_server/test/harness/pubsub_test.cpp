@@ -20,7 +20,7 @@ namespace rosserial
 #include "client_ros.h"
 #include "rosserial/std_msgs/String.h"
 #include "rosserial/std_srvs/Empty.h"
-}
+}  // namespace rosserial
 
 class Fixture : public ::testing::Test
 {
@@ -78,7 +78,11 @@ struct Got
 {
   int n = 0;
   std::string last;
-  void cb(const std_msgs::String::ConstPtr& m) { ++n; last = m->data; }
+  void cb(const std_msgs::String::ConstPtr& m)
+  {
+    ++n;
+    last = m->data;
+  }
 };
 
 TEST_F(Fixture, single_publish)
@@ -137,25 +141,27 @@ static void onEmpty(const rosserial::std_srvs::Empty::Request&, rosserial::std_s
 
 TEST_F(Fixture, single_service_server_and_params)
 {
-  rosserial::ros::ServiceServer<rosserial::std_srvs::Empty::Request, rosserial::std_srvs::Empty::Response>
-      server("test_srv", &onEmpty);
+  rosserial::ros::ServiceServer<rosserial::std_srvs::Empty::Request, rosserial::std_srvs::Empty::Response> server(
+      "test_srv", &onEmpty);
   client_nh.advertiseService(server);
   client_nh.initNode();
   ros::ServiceClient client = nh.serviceClient<std_srvs::Empty>("test_srv");
-  std::thread caller([&] {
-    std_srvs::Empty srv;
-    for (int i = 0; i < 100 && !served; ++i)
-    {
-      if (client.waitForExistence(ros::Duration(0.2)) && client.call(srv))
-        break;
-    }
-  });
+  std::thread caller(
+      [&]
+      {
+        std_srvs::Empty srv;
+        for (int i = 0; i < 100 && !served; ++i)
+        {
+          if (client.waitForExistence(ros::Duration(0.2)) && client.call(srv))
+            break;
+        }
+      });
   for (int i = 0; i < 1200 && !served; ++i)
   {
     client_nh.spinOnce();
     ros::WallDuration(0.01).sleep();
   }
-  for (int i = 0; i < 100; ++i)    // let the response go out
+  for (int i = 0; i < 100; ++i)  // let the response go out
   {
     client_nh.spinOnce();
     ros::WallDuration(0.01).sleep();
