@@ -4,8 +4,9 @@ Engine and description code work with ode_sim.description.transforms.Pose (p: xy
 ROS orders it), numpy 3-vectors and plain floats; everything that builds or reads a message
 field goes through the functions here."""
 import numpy as np
-from geometry_msgs.msg import Pose as PoseMsg, TransformStamped, Twist, Vector3
+from geometry_msgs.msg import Pose as PoseMsg, Twist, Vector3
 
+from course_runtime.transforms import transform_stamped
 from ode_sim.description.transforms import Pose
 
 
@@ -60,15 +61,7 @@ def twist_msg(lin, ang):
 
 def transform_msg(stamp, parent, child, pose):
     """geometry_msgs/TransformStamped parent -> child at `pose`."""
-    t = TransformStamped()
-    t.header.stamp = stamp
-    t.header.frame_id = parent
-    t.child_frame_id = child
-    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = \
-        (float(v) for v in pose.p)
-    r = t.transform.rotation
-    r.x, r.y, r.z, r.w = (float(v) for v in pose.q)
-    return t
+    return transform_stamped(stamp, parent, child, pose.p, pose.q)
 
 
 def fill_laserscan(msg, model, ranges, intensities, stamp=None, frame=None):
