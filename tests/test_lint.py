@@ -3,10 +3,28 @@ C++, flake8 (pyflakes + pycodestyle) over the Python, and the .editorconfig's ba
 All come from Debian (deps/debian.txt); a missing linter fails, never skips. How to run one
 linter by hand: CONTRIBUTING.md."""
 import os
+import re
 import subprocess
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SHELL_DIRS = ('scripts', 'docker', 'firmware', '.ci')
+# never linted: build outputs, installed dependencies, vendored and generated code
+SKIP_DIRS = {'.git', '.deps', 'build', 'devel', 'install', 'logs', '.catkin_tools', 'workspace',
+             'node_modules', 'vendor', '__pycache__', '.pytest_cache'}
+CXX_EXTENSIONS = ('.cpp', '.cc', '.h', '.hpp')
+# written by a program, in that program's layout: rosrun space_scanner_hw calibrate_accel
+CXX_GENERATED = {'firmware/sketches/space_scanner_base/accel_calibration.h'}
+
+
+def source_files(extensions, top=REPO):
+    """Paths (relative to REPO) of the files under `top` ending in `extensions`, outside
+    SKIP_DIRS (walks the tree: the course image has no .git)."""
+    found = []
+    for root, dirs, files in os.walk(top):
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS)
+        found += [os.path.relpath(os.path.join(root, f), REPO) for f in sorted(files)
+                  if f.endswith(extensions)]
+    return found
 
 
 def _is_shell(path):
@@ -38,3 +56,19 @@ def test_shellcheck():
     r = subprocess.run(['shellcheck', '-x', '-P', 'SCRIPTDIR', '-f', 'gcc'] + rel, cwd=REPO,
                        capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, 'shellcheck:\n' + (r.stdout + r.stderr)[-6000:]
+
+
+def test_clang_format():
+    """The C++ follows the .clang-format nearest to each file (the top-level one: ROS style;
+    ode_sim, the navigation cores and bench/ have their own): `clang-format -i FILE` fixes it."""
+    files = [f for f in source_files(CXX_EXTENSIONS) if f not in CXX_GENERATED]
+    assert len(files) > 100 and 'catkin_ws/src/control/hardware_interface/include/hardware_interface/robot_hw.h' \
+        in files, len(files)
+    bad = []
+    for i in range(0, len(files), 50):
+        r = subprocess.run(['clang-format', '--style=file', '--dry-run', '-Werror',
+                            '--ferror-limit=1'] + files[i:i + 50], cwd=REPO, capture_output=True,
+                           text=True, timeout=600)
+        if r.returncode != 0:
+            bad += sorted(set(re.findall(r'^(\S+?):\d+:\d+: error', r.stderr, re.M)))
+    assert not bad, 'not formatted as .clang-format says (clang-format -i FILE fixes it): %s' % bad
