@@ -213,7 +213,7 @@ def default_jobs():
     return int(os.environ.get('COURSE_TEST_JOBS') or 2)
 
 
-def main():
+def arguments():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument('--full', action='store_true', help='also run tests marked `full`')
     ap.add_argument('-k', dest='keyword', help='pytest -k expression; rostests: substring of file name')
@@ -224,12 +224,11 @@ def main():
     ap.add_argument('--no-rostest', action='store_true')
     ap.add_argument('--no-pytest', action='store_true')
     ap.add_argument('--no-gtest', action='store_true')
-    args = ap.parse_args()
+    return ap.parse_args()
 
-    course_testing.become_subreaper()   # orphans of a test come back to us and are killed
-    os.makedirs(RESULTS, exist_ok=True)
-    for old in glob.glob(os.path.join(RESULTS, '**', '*.xml'), recursive=True):
-        os.remove(old)
+
+def test_env(args):
+    """The environment of every test command."""
     env = dict(os.environ)
     env['ROS_LOG_DIR'] = os.path.join(RESULTS, 'ros_log')
     # Python nodes print as on a terminal (line by line), whatever the caller's environment:
@@ -242,6 +241,49 @@ def main():
     # (course_testing.SOFTWARE_GL); the GUI tests take as long
     env.update(course_testing.SOFTWARE_GL)
     env['COURSE_TEST_FULL'] = '1' if args.full else ''
+    return env
+
+
+def summarise(lanes, args, concurrent, t0):
+    """Prints the slowest tests, the failures and the closing line; writes summary.json; the
+    exit status."""
+    problems = [p for lane in lanes for p in lane.problems]
+    durations = [d for lane in lanes for d in lane.durations]
+    passed = failed = skipped = 0
+    failures = []
+    for x in (x for lane in lanes for x in lane.xmls):
+        a, b, c, names = count_junit(x)
+        passed, failed, skipped = passed + a, failed + b, skipped + c
+        failures += names
+    failed += len(problems)
+    print('\n=== ten slowest')
+    for sec, name in sorted(durations, reverse=True)[:10]:
+        print('%7.1f s  %s' % (sec, name))
+    print('\n=== summary (%.0f s%s)' % (time.monotonic() - t0,
+                                        ', %d pytest workers beside the rostests' % args.jobs
+                                        if concurrent else ''))
+    for name in failures:
+        print('FAILED', name)
+    for pr in problems:
+        print('FAILED', pr)
+    with open(os.path.join(RESULTS, 'summary.json'), 'w') as fh:   # read by scripts/stress.py
+        json.dump({'passed': passed, 'failed': failed, 'skipped': skipped,
+                   'failures': failures + problems, 'seconds': time.monotonic() - t0,
+                   'jobs': args.jobs, 'durations': sorted(durations, reverse=True)}, fh, indent=1)
+    line = '%d passed, %d failed' % (passed, failed)
+    if skipped:
+        line += ', %d skipped' % skipped
+    print(line, flush=True)
+    return 1 if failed or passed == 0 else 0
+
+
+def main():
+    args = arguments()
+    course_testing.become_subreaper()   # orphans of a test come back to us and are killed
+    os.makedirs(RESULTS, exist_ok=True)
+    for old in glob.glob(os.path.join(RESULTS, '**', '*.xml'), recursive=True):
+        os.remove(old)
+    env = test_env(args)
     runner = Runner()
     t0 = time.monotonic()
     concurrent = args.jobs > 1
@@ -279,35 +321,7 @@ def main():
         print('WARNING: %d processes were still running at the end (killed now): %s' % (
             len(leaked), '; '.join(leaked[:5])), flush=True)
 
-    lanes = (first, main_lane, ros_lane)
-    problems = [p for lane in lanes for p in lane.problems]
-    durations = [d for lane in lanes for d in lane.durations]
-    passed = failed = skipped = 0
-    failures = []
-    for x in (x for lane in lanes for x in lane.xmls):
-        a, b, c, names = count_junit(x)
-        passed, failed, skipped = passed + a, failed + b, skipped + c
-        failures += names
-    failed += len(problems)
-    print('\n=== ten slowest')
-    for sec, name in sorted(durations, reverse=True)[:10]:
-        print('%7.1f s  %s' % (sec, name))
-    print('\n=== summary (%.0f s%s)' % (time.monotonic() - t0,
-                                        ', %d pytest workers beside the rostests' % args.jobs
-                                        if concurrent else ''))
-    for name in failures:
-        print('FAILED', name)
-    for pr in problems:
-        print('FAILED', pr)
-    with open(os.path.join(RESULTS, 'summary.json'), 'w') as fh:   # read by scripts/stress.py
-        json.dump({'passed': passed, 'failed': failed, 'skipped': skipped,
-                   'failures': failures + problems, 'seconds': time.monotonic() - t0,
-                   'jobs': args.jobs, 'durations': sorted(durations, reverse=True)}, fh, indent=1)
-    line = '%d passed, %d failed' % (passed, failed)
-    if skipped:
-        line += ', %d skipped' % skipped
-    print(line, flush=True)
-    return 1 if failed or passed == 0 else 0
+    return summarise((first, main_lane, ros_lane), args, concurrent, t0)
 
 
 if __name__ == '__main__':
