@@ -72,3 +72,68 @@ def test_clang_format():
         if r.returncode != 0:
             bad += sorted(set(re.findall(r'^(\S+?):\d+:\d+: error', r.stderr, re.M)))
     assert not bad, 'not formatted as .clang-format says (clang-format -i FILE fixes it): %s' % bad
+
+
+def _editorconfig_sections():
+    """[(fnmatch patterns, {property: value})] of the top-level .editorconfig, in order;
+    `{a,b}` alternatives expanded (the only glob feature it uses beyond fnmatch's)."""
+    sections = []
+    with open(os.path.join(REPO, '.editorconfig')) as f:
+        for line in f:
+            line = line.split('#')[0].strip()
+            if line.startswith('[') and line.endswith(']'):
+                glob = line[1:-1]
+                m = re.match(r'^(.*)\{([^}]*)\}(.*)$', glob)
+                pats = [m.group(1) + alt + m.group(3) for alt in m.group(2).split(',')] if m else [glob]
+                sections.append((pats, {}))
+            elif '=' in line and sections:
+                k, v = (x.strip() for x in line.split('=', 1))
+                sections[-1][1][k] = v
+    return sections
+
+
+def test_editorconfig():
+    """The files of every kind .editorconfig names (by pattern other than `*`) keep its rules:
+    UTF-8, LF line ends, a final newline, no trailing whitespace, indentation by spaces
+    (Makefiles: tabs)."""
+    import fnmatch
+    sections = _editorconfig_sections()
+    assert sections and sections[0][0] == ['*'] and sections[0][1]['end_of_line'] == 'lf'
+    problems, checked = [], 0
+    for root, dirs, files in os.walk(REPO):
+        dirs[:] = [d for d in dirs if d not in SKIP_DIRS]
+        for name in files:
+            props, named = {}, False
+            for pats, p in sections:
+                if any(fnmatch.fnmatchcase(name, pat) for pat in pats):
+                    props.update(p)
+                    named = named or pats != ['*']
+            if not named:
+                continue
+            path = os.path.join(root, name)
+            rel = os.path.relpath(path, REPO)
+            with open(path, 'rb') as f:
+                data = f.read()
+            checked += 1
+            try:
+                data.decode('utf-8')
+            except UnicodeDecodeError as e:
+                problems.append('%s: not UTF-8 (%s)' % (rel, e.reason))
+                continue
+            if not data:
+                continue
+            if props.get('end_of_line') == 'lf' and b'\r' in data:
+                problems.append('%s: CR line ends' % rel)
+            if props.get('insert_final_newline') == 'true' and not data.endswith(b'\n'):
+                problems.append('%s: no newline at the end' % rel)
+            lines = data.split(b'\n')
+            if props.get('trim_trailing_whitespace') == 'true':
+                n = [i + 1 for i, l in enumerate(lines) if l != l.rstrip(b' \t')]
+                if n:
+                    problems.append('%s:%d: trailing whitespace' % (rel, n[0]))
+            if props.get('indent_style') == 'space':
+                n = [i + 1 for i, l in enumerate(lines) if l.startswith(b'\t')]
+                if n:
+                    problems.append('%s:%d: indented with a tab' % (rel, n[0]))
+    assert checked > 1000, checked
+    assert not problems, '\n'.join(problems[:50])
