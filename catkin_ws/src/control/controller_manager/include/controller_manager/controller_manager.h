@@ -145,6 +145,13 @@ private:
   void startControllers(const ros::Time& time);
   void startControllersAsap(const ros::Time& time);
   void clearSwitchRequest();
+  controller_interface::ControllerBaseSharedPtr createController(const std::string& type);
+  bool initController(controller_interface::ControllerBase& c, const std::string& name, ros::NodeHandle& c_nh,
+                      controller_interface::ControllerBase::ClaimedResources& claimed_resources);
+  bool requestControllers(const std::vector<std::string>& names, bool strict, const char* action,
+                          std::vector<controller_interface::ControllerBase*>& request);
+  bool planSwitch(bool strict, std::list<hardware_interface::ControllerInfo>& info_list);
+  bool waitForSwitch(int strictness, bool start_asap, double timeout);
 };
 
 }  // namespace controller_manager
