@@ -135,3 +135,18 @@ def test_place_mode_reports_the_ground_point(view, qtbot):
         qtbot.mouseClick(view, QtCore.Qt.LeftButton, pos=QtCore.QPoint(int(round(x)), int(round(y))))
     assert sig.args[0] == pytest.approx(1.0, abs=0.05)
     assert sig.args[1] == pytest.approx(-2.0, abs=0.05)
+
+
+def test_half_resolution_while_moving_then_full(view, qtbot):
+    view.repaint()
+    assert view.last_rgb().shape == (480, 640, 3)
+    view.full_frame_cost = 1.0                     # as if a full frame took a second
+    view.camera.orbit(20, 0)
+    view.repaint()                                 # moving: half the pixels each way
+    assert view.last_rgb().shape == (240, 320, 3)
+    assert red(view.last_rgb()).sum() > 700        # the same scene
+    qtbot.waitUntil(lambda: view.last_rgb().shape == (480, 640, 3), timeout=5000)
+    view.full_frame_cost = 0.001                   # cheap frames: always full resolution
+    view.camera.orbit(20, 0)
+    view.repaint()
+    assert view.last_rgb().shape == (480, 640, 3)

@@ -14,6 +14,9 @@ from ode_sim_gui.orbit import OrbitCamera
 
 HFOV = math.radians(60.0)
 CLICK_PIXELS = 4
+FAST_FRAME = 0.040          # s: a full frame slower than this -> half resolution while moving
+INTERACTIVE_SCALE = 0.5
+STILL_MS = 250              # the full-resolution frame this long after the last change
 
 
 class View3D(QtWidgets.QWidget):
@@ -30,11 +33,17 @@ class View3D(QtWidgets.QWidget):
         self.setMouseTracking(True)
         self.setFocusPolicy(QtCore.Qt.StrongFocus)
         self.setSizePolicy(QtWidgets.QSizePolicy.Expanding, QtWidgets.QSizePolicy.Expanding)
-        self._renderer = None
+        self._renderers = {}           # scale -> Renderer
+        self._dirty = set()
         self._image = None
+        self._want_full = False
+        self.full_frame_cost = 0.0
+        self._full_timer = QtCore.QTimer(self)
+        self._full_timer.setSingleShot(True)
+        self._full_timer.setInterval(STILL_MS)
+        self._full_timer.timeout.connect(self._full_frame)
         self._press = None
         self._last = None
-        self._dirty_scene = True
         self.mode = 'select'           # 'select' | 'place' | 'translate' | 'rotate' | 'wall'
         self._wall_start = None
         self.frames = 0
@@ -44,40 +53,55 @@ class View3D(QtWidgets.QWidget):
     # ------------------------------------------------------------ drawing
     def scene_changed(self):
         """The set of shapes changed (models came or went, selection changed)."""
-        self._dirty_scene = True
+        self._dirty = set(self._renderers)
         self._caster = None
 
-    def _ensure_renderer(self):
-        w, h = max(self.width(), 1), max(self.height(), 1)
-        if self._renderer is None or (self._renderer.width, self._renderer.height) != (w, h):
-            if self._renderer is not None:
-                self._renderer.release()
-            self._renderer = Renderer(w, h, HFOV, near=0.05, far=500.0)
-            self.camera.resize(w, h)
-            self._dirty_scene = True
-        if self._dirty_scene:
-            self._renderer.set_scene(self.scene.shapes(), lights=self.scene.lights(),
-                                     ambient=self.scene.ambient(),
-                                     background=self.scene.background())
-            self._dirty_scene = False
+    def _renderer_for(self, scale):
+        w = max(int(round(self.width() * scale)), 1)
+        h = max(int(round(self.height() * scale)), 1)
+        r = self._renderers.get(scale)
+        if r is None or (r.width, r.height) != (w, h):
+            if r is not None:
+                r.release()
+            r = self._renderers[scale] = Renderer(w, h, HFOV, near=0.05, far=500.0)
+            self._dirty.add(scale)
+        if scale in self._dirty:
+            r.set_scene(self.scene.shapes(), lights=self.scene.lights(),
+                        ambient=self.scene.ambient(), background=self.scene.background())
+            self._dirty.discard(scale)
+        return r
 
-    def render_now(self):
-        """Draw one frame into the image (does not paint)."""
+    def render_now(self, scale=1.0):
+        """Draw one frame into the image (does not paint); `scale` < 1 renders fewer pixels
+        (the same camera, the image is stretched over the view when painted)."""
         t0 = time.perf_counter()
-        self._ensure_renderer()
-        rgb, _ = self._renderer.render(self.camera.pose())
+        self.camera.resize(max(self.width(), 1), max(self.height(), 1))
+        rgb, _ = self._renderer_for(scale).render(self.camera.pose())
         self._rgb = rgb
         h, w, _ = rgb.shape
         self._image = QtGui.QImage(rgb.data, w, h, 3 * w, QtGui.QImage.Format_RGB888)
         self.frames += 1
-        self.frame_times.append(time.perf_counter() - t0)
+        dt = time.perf_counter() - t0
+        self.frame_times.append(dt)
         del self.frame_times[:-100]
+        if scale == 1.0:
+            self.full_frame_cost = dt
 
     def paintEvent(self, event):
-        self.render_now()
+        # software GL: while things move or the camera turns, a full frame that costs more than
+        # FAST_FRAME is drawn at half resolution; the full one follows once it is still
+        fast = not self._want_full and self.full_frame_cost > FAST_FRAME
+        self._want_full = False
+        self.render_now(INTERACTIVE_SCALE if fast else 1.0)
+        if fast:
+            self._full_timer.start()
         p = QtGui.QPainter(self)
-        p.drawImage(0, 0, self._image)
+        p.drawImage(self.rect(), self._image)
         p.end()
+
+    def _full_frame(self):
+        self._want_full = True
+        self.update()
 
     def last_rgb(self):
         return getattr(self, '_rgb', None)
@@ -171,6 +195,7 @@ class View3D(QtWidgets.QWidget):
         self.update()
 
     def release(self):
-        if self._renderer is not None:
-            self._renderer.release()
-            self._renderer = None
+        self._full_timer.stop()
+        for r in self._renderers.values():
+            r.release()
+        self._renderers = {}
