@@ -26,7 +26,7 @@ GAZEBO_SERVICES = [
     'set_model_state', 'set_parameters', 'set_physics_properties', 'spawn_sdf_model',
     'spawn_urdf_model', 'unpause_physics']
 # what gzclient gets from gzserver over Gazebo transport (ros/world_control.py, ode_sim_msgs)
-OURS_TOPICS = ['/gazebo/world_stats']
+OURS_TOPICS = ['/gazebo/pose_info', '/gazebo/world_stats']
 OURS_SERVICES = ['get_world_sdf', 'step_world']
 
 

@@ -1,6 +1,7 @@
 """The simulator's window API for real (issue 31): sim_node on a world, a client process that
 inserts a model:// include, a box, a URDF robot and a light, moves one, deletes one, pauses and
-steps 100 steps (sim time + 100 x step exactly), reads /gazebo/world_stats and saves the world
+steps 100 steps (sim time + 100 x step exactly), reads /gazebo/world_stats and /gazebo/pose_info
+and saves the world
 through /gazebo/get_world_sdf; sim_node restarted on the saved file has the same models at the
 same poses (and the robot's joint where it was, its ros_control bridge serving it)."""
 import json
@@ -112,5 +113,12 @@ def test_insert_move_delete_step_save_and_reload(roscore, tmp_path):
         assert same_pose(after['links'][name], p, 1e-6), (name, after['links'][name], p)
     assert after['joints']['shoulder'] == pytest.approx(before['joints']['shoulder'], abs=1e-6)
     assert after['lights'] == {'sun': True, 'lamp_1': True}
+    for out_state in (before, after):           # /gazebo/pose_info agrees with the services
+        info = out_state['pose_info']
+        assert set(info['models']) == set(out_state['models'])
+        for name, p in out_state['models'].items():
+            assert same_pose(info['models'][name], p, 1e-6), name
+        for name, p in out_state['links'].items():
+            assert same_pose(info['links'][name], p, 1e-6), name
     assert after['control_joints'] == ['shoulder']
     assert math.isclose(after['sim_time'], 0.0, abs_tol=1e-9)

@@ -1,6 +1,8 @@
 """ode_sim.ros.world_control without a roscore: step_world's exact step count in the node's step
-groups, the real-time factor and the statistics message (test_world_control.py drives the
-real node)."""
+groups, the real-time factor, the statistics and pose messages (test_world_control.py drives
+the real node)."""
+import threading
+
 import pytest
 
 from ode_sim.description import sdf
@@ -17,6 +19,7 @@ class FakeNode:
                                 % dt, 'w.world')
         self.physics = PhysicsWorld(world.physics, world.gravity)
         self.paused = True
+        self.lock = threading.RLock()
         self.group = group
         self.calls = []
         self.clock_forced = 0
@@ -88,3 +91,22 @@ def test_statistics_message():
     node.physics.step(500)
     m = wc.stats(wall=111.0)
     assert not m.paused and m.real_time_factor == pytest.approx(1.0)
+
+
+def test_pose_info_every_model_and_link():
+    node = FakeNode()
+    box = sdf.parse_sdf_model(
+        '<sdf version="1.6"><model name="b"><pose>1 2 3 0 0 0.5</pose>'
+        '<link name="l1"><inertial><mass>1</mass></inertial></link>'
+        '<link name="l2"><pose>0 0 1 0 0 0</pose><inertial><mass>1</mass></inertial></link>'
+        '<joint name="j" type="fixed"><parent>l1</parent><child>l2</child></joint>'
+        '</model></sdf>', 'b')
+    node.physics.add_model(box)
+    node.physics.step(3)
+    m = control(node).pose_info()
+    assert m.iterations == 3 and m.sim_time.to_sec() == pytest.approx(0.003)
+    assert m.model_name == ['b'] and m.link_name == ['b::l1', 'b::l2']
+    p = m.model_pose[0].position
+    assert [p.x, p.y, p.z] == pytest.approx([1, 2, 3 - 0.5 * 9.8 * 0.003 ** 2 * 2], abs=1e-4)
+    assert m.link_pose[1].position.z - m.link_pose[0].position.z == pytest.approx(1.0, abs=1e-6)
+    assert m.model_pose[0].orientation.z == pytest.approx(0.2474, abs=1e-3)

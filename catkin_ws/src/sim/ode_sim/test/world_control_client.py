@@ -88,6 +88,12 @@ def state():
         out['joints']['shoulder'] = r.position[0]
     lp = svc('/gazebo/get_light_properties', gs.GetLightProperties)
     out['lights'] = {n: lp(n).success for n in ('sun', 'lamp_1')}
+    # the windows' pose topic (paused world: published all the same)
+    from ode_sim_msgs.msg import PoseInfo
+    info = rospy.wait_for_message('/gazebo/pose_info', PoseInfo, timeout=60)
+    out['pose_info'] = {'models': dict(zip(info.model_name, map(pose_list, info.model_pose))),
+                        'links': dict(zip(info.link_name, map(pose_list, info.link_pose))),
+                        'iterations': info.iterations}
     return out
 
 

@@ -1,6 +1,6 @@
 """ode_sim_msgs: the generated types have the fields of the window API's contract (the desktop
 window and the course web page code against them)."""
-from ode_sim_msgs.msg import WorldStatistics
+from ode_sim_msgs.msg import PoseInfo, WorldStatistics
 from ode_sim_msgs.srv import GetWorldSDF, StepWorld
 
 
@@ -27,3 +27,10 @@ def test_step_world():
     assert fields(StepWorld._response_class) == [
         ('success', 'bool'), ('status_message', 'string'), ('sim_time', 'float64'),
         ('iterations', 'uint64')]
+
+
+def test_pose_info():
+    assert fields(PoseInfo) == [
+        ('sim_time', 'time'), ('iterations', 'uint64'), ('model_name', 'string[]'),
+        ('model_pose', 'geometry_msgs/Pose[]'), ('link_name', 'string[]'),
+        ('link_pose', 'geometry_msgs/Pose[]')]

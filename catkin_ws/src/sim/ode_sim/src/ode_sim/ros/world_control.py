@@ -5,7 +5,11 @@ from gzserver over Gazebo transport), as ode_sim_msgs types:
   writes it (description/save_world.py);
 - /gazebo/step_world (ode_sim_msgs/StepWorld): exactly N physics steps of a paused world;
 - /gazebo/world_stats (ode_sim_msgs/WorldStatistics, 5 Hz of wall time): sim, real and pause
-  time, iterations, paused, real-time factor, step size (the window's bottom bar).
+  time, iterations, paused, real-time factor, step size (the window's bottom bar);
+- /gazebo/pose_info (ode_sim_msgs/PoseInfo, at most 60 Hz of wall time while subscribed, running
+  or paused): every model's and link's pose, read on its own thread under the node's lock, so a
+  window costs the simulation nothing per step (gazebo_msgs' model_states / link_states are
+  published every step and make the node step one step at a time).
 
 Also spawn_light(): /gazebo/spawn_sdf_model with a <light> (GazeboApi.spawn_sdf calls it).
 """
@@ -18,9 +22,10 @@ from ode_sim_msgs import srv as osrv
 
 from ode_sim.description import save_world, sdf
 from ode_sim.description.model import ModelError
-from ode_sim.ros.convert import pose_from_msg
+from ode_sim.ros.convert import pose_from_msg, pose_msg
 
 STATS_PERIOD = 0.2          # wall seconds between /gazebo/world_stats messages
+POSE_PERIOD = 1.0 / 60      # wall seconds between /gazebo/pose_info messages at most
 RTF_WINDOW = 1.0            # wall seconds the real-time factor is measured over
 
 
@@ -62,11 +67,14 @@ class WorldControl:
             rospy.Service(n + '/step_world', osrv.StepWorld, self.step_world),
         ]
         self.stats_pub = rospy.Publisher(n + '/world_stats', om.WorldStatistics, queue_size=1)
-        self._thread = None
+        self.pose_pub = rospy.Publisher(n + '/pose_info', om.PoseInfo, queue_size=1)
+        self._threads = []
         if stats:
-            self._thread = threading.Thread(target=self._stats_loop, name='world_stats',
-                                            daemon=True)
-            self._thread.start()
+            for target, name in ((self._stats_loop, 'world_stats'),
+                                 (self._pose_loop, 'pose_info')):
+                t = threading.Thread(target=target, name=name, daemon=True)
+                t.start()
+                self._threads.append(t)
 
     # ----------------------------------------------------------------- Save World
     def world_text(self):
@@ -122,6 +130,32 @@ class WorldControl:
         m.real_time_factor = 0.0 if m.paused else self.rtf.value()
         m.max_step_size = float(pw.dt)
         return m
+
+    # ----------------------------------------------------------------- poses
+    def pose_info(self):
+        """PoseInfo of the world now (under the node's lock)."""
+        m = om.PoseInfo()
+        with self.node.lock:
+            pw = self.node.physics
+            m.sim_time = rospy.Time.from_sec(pw.time)
+            m.iterations = pw.steps
+            for name, model in pw.models.items():
+                m.model_name.append(name)
+                m.model_pose.append(pose_msg(model.pose()))
+                for lname, link in model.links.items():
+                    m.link_name.append('%s::%s' % (name, lname))
+                    m.link_pose.append(pose_msg(link.pose()))
+        return m
+
+    def _pose_loop(self):
+        while not rospy.is_shutdown():
+            time.sleep(POSE_PERIOD)
+            if self.pose_pub.get_num_connections() == 0:
+                continue
+            try:
+                self.pose_pub.publish(self.pose_info())
+            except rospy.ROSException:          # shutting down
+                return
 
     def _stats_loop(self):
         last = time.monotonic()
