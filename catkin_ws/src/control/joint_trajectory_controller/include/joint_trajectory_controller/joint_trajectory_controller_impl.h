@@ -11,31 +11,10 @@
 #include <ros/param.h>
 #include <urdf/model.h>
 
+#include <joint_trajectory_controller/internal/controller_helpers.h>
+
 namespace joint_trajectory_controller
 {
-namespace internal
-{
-inline std::string controllerName(const ros::NodeHandle& nh)
-{
-  const std::string& ns = nh.getNamespace();
-  const std::size_t slash = ns.find_last_of('/');
-  return slash == std::string::npos ? ns : ns.substr(slash + 1);
-}
-
-/// Stamp and desired/actual/error of a state message (the action feedback or the state topic's).
-template <class Msg, class State>
-void fillStateMsg(Msg& m, const ros::Time& time, const State& desired, const State& actual, const State& error)
-{
-  m.header.stamp = time;
-  m.desired.positions = desired.position;
-  m.desired.velocities = desired.velocity;
-  m.desired.accelerations = desired.acceleration;
-  m.actual.positions = actual.position;
-  m.actual.velocities = actual.velocity;
-  m.error.positions = error.position;
-  m.error.velocities = error.velocity;
-}
-}  // namespace internal
 
 template <class SegmentImpl, class HardwareInterface>
 JointTrajectoryController<SegmentImpl, HardwareInterface>::~JointTrajectoryController()
@@ -63,50 +42,17 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
 
   // Continuous joints of the robot description wrap around. As the original: the description in
   // the controller manager's namespace, else the nearest 'robot_description' above it.
-  std::string urdf_string;
-  std::string urdf_param = root_nh.resolveName("robot_description");
-  if (!root_nh.getParam("robot_description", urdf_string))
-  {
-    // As the original's fallback to the global description: search up the namespaces.
-    if (!root_nh.searchParam("robot_description", urdf_param))
-      urdf_param = ros::names::resolve("robot_description");
-    if (!ros::param::get(urdf_param, urdf_string))
-    {
-      ROS_ERROR_STREAM_NAMED(name_, "Could not find the robot description in parameter '"
-                                        << root_nh.resolveName("robot_description") << "' nor '" << urdf_param << "'.");
-      return false;
-    }
-  }
+  std::string urdf_string, urdf_param;
+  if (!internal::robotDescription(root_nh, name_, urdf_string, urdf_param))
+    return false;
   urdf::Model urdf;
   if (!urdf.initString(urdf_string))
   {
     ROS_ERROR_STREAM_NAMED(name_, "Failed to parse URDF contained in '" << urdf_param << "' parameter");
     return false;
   }
-  angle_wraparound_.assign(n_joints, false);
-  joints_.resize(n_joints);
-  for (unsigned int i = 0; i < n_joints; ++i)
-  {
-    const auto urdf_joint = urdf.getJoint(joint_names_[i]);
-    if (!urdf_joint)
-    {
-      ROS_ERROR_STREAM_NAMED(name_, "Could not find joint '" << joint_names_[i] << "' in URDF model.");
-      return false;
-    }
-    angle_wraparound_[i] = urdf_joint->type == urdf::Joint::CONTINUOUS;
-    try
-    {
-      joints_[i] = hw->getHandle(joint_names_[i]);
-    }
-    catch (const hardware_interface::HardwareInterfaceException& e)
-    {
-      ROS_ERROR_STREAM_NAMED(name_, "Could not find joint '"
-                                        << joint_names_[i] << "' in '"
-                                        << hardware_interface::internal::demangledTypeName<HardwareInterface>()
-                                        << "': " << e.what());
-      return false;
-    }
-  }
+  if (!internal::jointHandles(hw, urdf, joint_names_, name_, angle_wraparound_, joints_))
+    return false;
 
   default_tolerances_ = getSegmentTolerances<Scalar>(ros::NodeHandle(controller_nh_, "constraints"), joint_names_);
 
@@ -118,16 +64,10 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
   }
 
   controller_nh_.param("stop_trajectory_duration", stop_trajectory_duration_, 0.0);
-  double state_publish_rate = 50.0, action_monitor_rate = 20.0;
-  controller_nh_.param("state_publish_rate", state_publish_rate, 50.0);
-  controller_nh_.param("action_monitor_rate", action_monitor_rate, 20.0);
   controller_nh_.param("allow_partial_joints_goal", allow_partial_joints_goal_, false);
-  if (!(state_publish_rate > 0.0) || !(action_monitor_rate > 0.0))
-  {
-    ROS_ERROR_STREAM_NAMED(name_, "state_publish_rate and action_monitor_rate must be positive (got "
-                                      << state_publish_rate << " and " << action_monitor_rate << ").");
+  double state_publish_rate = 50.0, action_monitor_rate = 20.0;
+  if (!internal::publishRates(controller_nh_, name_, state_publish_rate, action_monitor_rate))
     return false;
-  }
   state_publish_period_ = 1.0 / state_publish_rate;
   action_monitor_period_ = 1.0 / action_monitor_rate;
 
@@ -139,19 +79,9 @@ bool JointTrajectoryController<SegmentImpl, HardwareInterface>::init(HardwareInt
 
   state_publisher_.reset(
       new realtime_tools::RealtimePublisher<control_msgs::JointTrajectoryControllerState>(controller_nh_, "state", 1));
-  {
-    control_msgs::JointTrajectoryControllerState& m = state_publisher_->msg_;
-    state_publisher_->lock();
-    m.joint_names = joint_names_;
-    m.desired.positions.assign(n_joints, 0.0);
-    m.desired.velocities.assign(n_joints, 0.0);
-    m.desired.accelerations.assign(n_joints, 0.0);
-    m.actual.positions.assign(n_joints, 0.0);
-    m.actual.velocities.assign(n_joints, 0.0);
-    m.error.positions.assign(n_joints, 0.0);
-    m.error.velocities.assign(n_joints, 0.0);
-    state_publisher_->unlock();
-  }
+  state_publisher_->lock();
+  internal::resetStateMsg(state_publisher_->msg_, joint_names_);
+  state_publisher_->unlock();
   feedback_.joint_names = joint_names_;
   feedback_.desired = state_publisher_->msg_.desired;
   feedback_.actual = state_publisher_->msg_.actual;
@@ -270,13 +200,7 @@ void JointTrajectoryController<SegmentImpl, HardwareInterface>::update(const ros
     }
   }
   if (goal_to_check && goal_to_check->isActive())
-  {
-    bool done = true;
-    for (unsigned int i = 0; i < n_joints; ++i)
-      done = done && (!goal_to_check->joints()[i] || goal_to_check->successful()[i]);
-    if (done)
-      goal_to_check->requestSucceeded();
-  }
+    internal::succeedIfDone(*goal_to_check, n_joints);
 
   hw_iface_adapter_.updateCommand(time, period, desired_state_, state_error_);
 
