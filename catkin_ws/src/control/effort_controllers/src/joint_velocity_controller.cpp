@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include <forward_command_controller/joint_setup.h>
+#include <forward_command_controller/pid_state.h>
 #include <pluginlib/class_list_macros.hpp>
 
 namespace effort_controllers
@@ -81,17 +82,9 @@ void JointVelocityController::update(const ros::Time& time, const ros::Duration&
 
   if (loop_count_ % 10 == 0 && controller_state_publisher_ && controller_state_publisher_->trylock())
   {
-    control_msgs::JointControllerState& msg = controller_state_publisher_->msg_;
-    msg.header.stamp = time;
-    msg.set_point = command;
-    msg.process_value = joint_.getVelocity();
-    msg.error = error;
-    msg.time_step = period.toSec();
-    msg.command = commanded_effort;
-    double dummy = 0.0;
-    bool antiwindup = false;
-    getGains(msg.p, msg.i, msg.d, msg.i_clamp, dummy, antiwindup);
-    msg.antiwindup = antiwindup;
+    forward_command_controller::internal::fillPidState(controller_state_publisher_->msg_, time, command,
+                                                       joint_.getVelocity(), error, period, commanded_effort,
+                                                       pid_controller_);
     controller_state_publisher_->unlockAndPublish();
   }
   ++loop_count_;

@@ -14,6 +14,7 @@
 #include <control_toolbox/pid.h>
 #include <controller_interface/controller.h>
 #include <forward_command_controller/joint_setup.h>
+#include <forward_command_controller/pid_state.h>
 #include <forward_command_controller/urdf_joint.h>
 #include <hardware_interface/joint_command_interface.h>
 #include <realtime_tools/realtime_buffer.h>
@@ -189,17 +190,8 @@ void JointPositionPidController<HardwareInterface>::update(const ros::Time& time
   if (loop_count_ % 10 == 0 && controller_state_publisher_ && controller_state_publisher_->trylock())
   {
     control_msgs::JointControllerState& msg = controller_state_publisher_->msg_;
-    msg.header.stamp = time;
-    msg.set_point = command_position;
-    msg.process_value = current_position;
+    internal::fillPidState(msg, time, command_position, current_position, error, period, commanded, pid_controller_);
     msg.process_value_dot = joint_.getVelocity();
-    msg.error = error;
-    msg.time_step = period.toSec();
-    msg.command = commanded;
-    double dummy = 0.0;
-    bool antiwindup = false;
-    getGains(msg.p, msg.i, msg.d, msg.i_clamp, dummy, antiwindup);
-    msg.antiwindup = antiwindup;
     controller_state_publisher_->unlockAndPublish();
   }
   ++loop_count_;
