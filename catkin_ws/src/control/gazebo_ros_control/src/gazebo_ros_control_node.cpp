@@ -98,12 +98,12 @@ bool GazeboRosControlNode::parseJoints(XmlRpc::XmlRpcValue& value, const std::st
   return true;
 }
 
-bool GazeboRosControlNode::init(std::string* error)
+/// The simulator's joint list parameter, waited for (wall time) up to wait_s; false with the
+/// reason in *error when it does not come.
+static bool waitForJointsParam(const std::string& joints_param, double wait_s, const std::string& robot_namespace,
+                               XmlRpc::XmlRpcValue& joints_value, std::string* error)
 {
-  const std::string joints_param = joinNs(robot_namespace_, "ode_sim/joints");
-  const std::string period_param = joinNs(robot_namespace_, "ode_sim/control_period");
-  XmlRpc::XmlRpcValue joints_value;
-  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(options_.wait_for_joints);
+  const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(wait_s);
   bool warned = false;
   while (!ros::param::get(joints_param, joints_value))
   {
@@ -112,7 +112,7 @@ bool GazeboRosControlNode::init(std::string* error)
       *error = "parameter " + joints_param +
                " not set: is ode_sim running a model whose URDF loads libgazebo_ros_control.so "
                "in namespace '" +
-               robot_namespace_ + "'?";
+               robot_namespace + "'?";
       return false;
     }
     if (!warned)
@@ -122,6 +122,16 @@ bool GazeboRosControlNode::init(std::string* error)
     }
     ros::WallDuration(0.1).sleep();
   }
+  return true;
+}
+
+bool GazeboRosControlNode::init(std::string* error)
+{
+  const std::string joints_param = joinNs(robot_namespace_, "ode_sim/joints");
+  const std::string period_param = joinNs(robot_namespace_, "ode_sim/control_period");
+  XmlRpc::XmlRpcValue joints_value;
+  if (!waitForJointsParam(joints_param, options_.wait_for_joints, robot_namespace_, joints_value, error))
+    return false;
   std::vector<BridgeJoint> joints;
   if (!parseJoints(joints_value, joints_param, &joints, error))
     return false;
