@@ -194,7 +194,7 @@ def _constructor(cls_name, fields):
 
 def _serialize(fields):
     lines = ['', '    virtual int serialize(unsigned char *outbuffer) const override',
-              '    {', '      int offset = 0;']
+             '    {', '      int offset = 0;']
     for f in fields:
         if f.is_array and f.array_len is None:
             lines += ['      offset += ros::Msg::serializeUInt<uint32_t>(outbuffer + offset, '
@@ -213,7 +213,7 @@ def _serialize(fields):
 
 def _deserialize(fields):
     lines = ['', '    virtual int deserialize(unsigned char *inbuffer) override',
-              '    {', '      int offset = 0;']
+             '    {', '      int offset = 0;']
     for f in fields:
         if f.is_array and f.array_len is None:
             lines += ['      uint32_t %s_lengthT = ros::Msg::deserializeUInt<uint32_t>(inbuffer + offset);'
@@ -239,7 +239,7 @@ def _deserialize(fields):
 
 def _serialized_length(fields):
     lines = ['', '    virtual int serializedLength() const override', '    {',
-              '      int length = 0;']
+             '      int length = 0;']
     for f in fields:
         if f.is_array:
             n = '%s_length' % f.name if f.array_len is None else str(f.array_len)

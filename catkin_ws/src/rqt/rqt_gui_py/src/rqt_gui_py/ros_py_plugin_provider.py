@@ -69,4 +69,3 @@ class RosPyPluginProvider(RospkgPluginProvider):
                                   % os.environ.get('ROS_MASTER_URI'))
         init_node()
         return super(RosPyPluginProvider, self).load_class(descriptor)
-

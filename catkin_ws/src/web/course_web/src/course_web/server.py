@@ -160,7 +160,6 @@ def make_handler(www_root, find_package, config, log=None, token=None, auth_issu
         'routes': dict(routes or {})})
 
 
-
 def start_server(address, port, www_root, find_package, config, log=None, token=None,
                  auth_issuer=None, routes=None):
     """Starts serving in a daemon thread; returns the server (call .shutdown() to stop)."""
