@@ -107,12 +107,20 @@ def test_editing_in_the_window(qtbot, ros):
     wait_until(qtbot, lambda: abs(win.scene.model_pose('unit_sphere').rpy()[2] - math.pi / 2)
                < 0.1, 30, 'the sphere turned to 90 degrees')
     toolbar_click(qtbot, win, win.act_modes['select'])
+    win.select('unit_sphere')
 
-    # Edit -> Reset Model Poses: back where it was inserted
-    win.menuBar()
+    # Camera -> Follow: the view's focus goes with the selected model
+    win.act_follow.trigger()
+    assert win.act_follow.isChecked()
+    # Edit -> Reset Model Poses: back where it was inserted (and the camera follows it there)
     win.act_reset_poses.trigger()
     wait_until(qtbot, lambda: np.allclose(win.scene.model_pose('unit_sphere').p[:2], (1.0, 0.0),
                                           atol=0.05), 30, 'the sphere back at (1, 0)')
+    wait_until(qtbot, lambda: np.allclose(win.view.camera.focus[:2], (1.0, 0.0), atol=0.05), 10,
+               'the camera to follow the sphere')
+    win.act_follow.trigger()
+    assert not win.act_follow.isChecked()
+    win.view.camera.look_at((0.0, -7.0, 9.0), (0.0, 0.0, 0.0))
 
     # the wall tool: two walls dragged on the ground, Enter -> one static model
     before = load_rgb(screenshot(os.environ['DISPLAY'], os.path.join(OUT, 'before_walls.png')))

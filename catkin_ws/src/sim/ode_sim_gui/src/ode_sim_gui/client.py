@@ -40,23 +40,21 @@ class SimClient:
     def __init__(self, ns='/gazebo'):
         self.ns = ns.rstrip('/')
         self._lock = threading.Lock()
-        self._links = None
-        self._models = None
+        self._raw = None
+        self._cache = [None, None]
         self.stats = None
         self.version = 0          # bumps on every new pose message
         self._subs = [
-            # the simulator publishes these every step (1 kHz): kept as raw bytes (AnyMsg, no
-            # deserialisation in the receiving thread), only the latest one is decoded, by poses()
-            rospy.Subscriber(self.ns + '/link_states', rospy.AnyMsg, self._on_links,
-                             queue_size=1, buff_size=2 ** 22),
-            rospy.Subscriber(self.ns + '/model_states', rospy.AnyMsg, self._on_models,
+            # every model's and link's pose, at most 60 times a wall second (the simulator's
+            # /gazebo/pose_info, as Gazebo's ~/pose/info for gzclient: unlike link_states it
+            # never makes the simulator publish every step); kept as raw bytes (AnyMsg), only
+            # the latest one is decoded, when the view draws
+            rospy.Subscriber(self.ns + '/pose_info', rospy.AnyMsg, self._on_poses,
                              queue_size=1, buff_size=2 ** 22),
             rospy.Subscriber(self.ns + '/world_stats', om.WorldStatistics, self._on_stats,
                              queue_size=1),
         ]
         self._proxies = {}
-        self._link_cache = [None, None]
-        self._model_cache = [None, None]
 
     def close(self):
         for s in self._subs:
@@ -64,42 +62,34 @@ class SimClient:
         self._subs = []
 
     # -------------------------------------------------------------- topics
-    def _on_links(self, msg):
+    def _on_poses(self, msg):
         with self._lock:
-            self._links = msg
-            self.version += 1
-
-    def _on_models(self, msg):
-        with self._lock:
-            self._models = msg
+            self._raw = msg
             self.version += 1
 
     def _on_stats(self, msg):
         self.stats = msg
 
-    @staticmethod
-    def _decode(raw, cls, cache):
+    def _latest(self):
+        with self._lock:
+            raw = self._raw
         if raw is None:
             return None
-        if cache[0] is not raw:
-            cache[:] = [raw, cls().deserialize(raw._buff)]
-        return cache[1]
+        if self._cache[0] is not raw:
+            self._cache = [raw, om.PoseInfo().deserialize(raw._buff)]
+        return self._cache[1]
 
     def poses(self):
-        """({'model::link': Pose}, {model: Pose}) from the latest messages."""
-        with self._lock:
-            links, models = self._links, self._models
-        links = self._decode(links, gm.LinkStates, self._link_cache)
-        models = self._decode(models, gm.ModelStates, self._model_cache)
-        lp = {n: pose_from_msg(p) for n, p in zip(links.name, links.pose)} if links else {}
-        mp = {n: pose_from_msg(p) for n, p in zip(models.name, models.pose)} if models else {}
-        return lp, mp
+        """({'model::link': Pose}, {model: Pose}) from the latest pose message."""
+        m = self._latest()
+        if m is None:
+            return {}, {}
+        return ({n: pose_from_msg(p) for n, p in zip(m.link_name, m.link_pose)},
+                {n: pose_from_msg(p) for n, p in zip(m.model_name, m.model_pose)})
 
     def model_names(self):
-        with self._lock:
-            raw = self._models
-        models = self._decode(raw, gm.ModelStates, self._model_cache)
-        return list(models.name) if models is not None else None
+        m = self._latest()
+        return list(m.model_name) if m is not None else None
 
     # ------------------------------------------------------------ services
     def available(self):
