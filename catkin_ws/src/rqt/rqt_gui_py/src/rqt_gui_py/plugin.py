@@ -1,4 +1,5 @@
-"""rqt_gui_py.plugin.Plugin: base class of Python rqt plugins (rospy is initialised for them)."""
+"""rqt_gui_py.plugin.Plugin: base class of Python rqt plugins (rospy is initialised for them by
+RosPyPluginProvider); shutdown_plugin, save_settings and restore_settings are qt_gui's."""
 from qt_gui.plugin import Plugin as Base
 
 
@@ -6,12 +7,3 @@ class Plugin(Base):
 
     def __init__(self, context):
         super(Plugin, self).__init__(context)
-
-    def shutdown_plugin(self):
-        pass
-
-    def save_settings(self, plugin_settings, instance_settings):
-        pass
-
-    def restore_settings(self, plugin_settings, instance_settings):
-        pass
