@@ -231,8 +231,9 @@ class LaserModel:
 
     # -- casting ---------------------------------------------------------------------------
     def scan(self, caster, sensor_pose, exclude=None):
-        """Cast the rays from the sensor's world pose (a transforms.Pose) the way Gazebo does
-        (starting at range_min) and return (ranges, intensities) as published."""
+        """Cast the rays with `caster` (an engine.raycast.RayCaster) from the sensor's world
+        pose (a transforms.Pose) the way Gazebo does (starting at range_min) and return
+        (ranges, intensities) as published."""
         dirs = sensor_pose.rotate(self.directions)
         # one origin, surfaces before range_min ignored: the same hits as rays starting at
         # range_min (ODE reports the first surface crossing after a ray's start)
@@ -241,12 +242,7 @@ class LaserModel:
         retro = np.zeros(len(dist))
         hit = who >= 0
         if hit.any():
-            if hasattr(caster, 'laser_retro'):
-                table = caster.laser_retro()
-            else:
-                table = np.array([float(getattr(s, 'laser_retro', 0.0) or 0.0)
-                                  for s in caster.shapes])
-            retro[hit] = table[who[hit]]
+            retro[hit] = caster.laser_retro()[who[hit]]
         return self.to_ranges(dist, retro)
 
     def to_ranges(self, distances, retro=None):

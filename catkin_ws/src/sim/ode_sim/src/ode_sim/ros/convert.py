@@ -64,6 +64,57 @@ def transform_msg(stamp, parent, child, pose):
     return transform_stamped(stamp, parent, child, pose.p, pose.q)
 
 
+def odometry_msg(stamp, frame, child, p, q, vx, vy, wz, pose_covariance=(),
+                 twist_covariance=()):
+    """nav_msgs/Odometry of a planar base: pose p (x, y, z), q (x, y, z, w) in `frame`, twist
+    vx, vy, wz in `child`'s axes; covariances as (index, value) pairs (the rest 0)."""
+    from nav_msgs.msg import Odometry
+    msg = Odometry()
+    msg.header.stamp = stamp
+    msg.header.frame_id = frame
+    msg.child_frame_id = child
+    fill_pose_tuples(msg.pose.pose, p, q)
+    t = msg.twist.twist
+    t.linear.x, t.linear.y, t.angular.z = vx, vy, wz
+    for i, v in pose_covariance:
+        msg.pose.covariance[i] = v
+    for i, v in twist_covariance:
+        msg.twist.covariance[i] = v
+    return msg
+
+
+def planar_twist(msg):
+    """(linear.x, angular.z) of a geometry_msgs/Twist as floats: a drive's command."""
+    return float(msg.linear.x), float(msg.angular.z)
+
+
+def joint_state_msg(stamp, names, positions):
+    """sensor_msgs/JointState with names and positions (no velocities, no efforts)."""
+    from sensor_msgs.msg import JointState
+    msg = JointState()
+    msg.header.stamp = stamp
+    msg.name = list(names)
+    msg.position = [float(v) for v in positions]
+    return msg
+
+
+def imu_msg(stamp, frame, q, angular_velocity, linear_acceleration, variance):
+    """sensor_msgs/Imu: orientation q (x, y, z, w), angular velocity and linear acceleration
+    (3-sequences); `variance` on the diagonal of all three covariances."""
+    from sensor_msgs.msg import Imu
+    msg = Imu()
+    msg.header.stamp = stamp
+    msg.header.frame_id = frame
+    o = msg.orientation
+    o.x, o.y, o.z, o.w = q
+    fill_vector(msg.angular_velocity, angular_velocity)
+    fill_vector(msg.linear_acceleration, linear_acceleration)
+    for cov in (msg.orientation_covariance, msg.angular_velocity_covariance,
+                msg.linear_acceleration_covariance):
+        cov[0] = cov[4] = cov[8] = variance
+    return msg
+
+
 def fill_laserscan(msg, model, ranges, intensities, stamp=None, frame=None):
     """Fill a sensor_msgs/LaserScan (or any object with its fields; None: a new LaserScan)
     from an engine LaserModel the way gazebo_ros_laser does. Returns the message."""

@@ -65,8 +65,7 @@ class PluginContext:
         core: the compiled ray casting, or the NumPy reference with PhysicsWorld(core='python')."""
         from ode_sim.engine.raycast import RayCaster
         if self._raycaster is None:
-            self._raycaster = RayCaster(self.physics.collision_shapes(),
-                                        core=getattr(self.physics, 'core', 'compiled'))
+            self._raycaster = RayCaster(self.physics.collision_shapes(), core=self.physics.core)
             self._ray_version = self.physics.version
         elif self._ray_version != self.physics.version:
             self._raycaster.set_shapes(self.physics.collision_shapes())

@@ -32,7 +32,8 @@ EPSILON_DIFF = 1e-6     # the original's "at max range" comparison
 
 
 def ray_hits(laser, caster, sensor_pose):
-    """(raw ranges, retro) per ray, in the LaserModel's ray order (vertical outer)."""
+    """(raw ranges, retro) per ray, in the LaserModel's ray order (vertical outer); `caster`
+    is the context's RayCaster."""
     dirs = sensor_pose.rotate(laser.directions)
     dist, who = caster.cast_hits(sensor_pose.p, dirs, laser.range_max, None,
                                  min_range=laser.range_min)
@@ -41,9 +42,7 @@ def ray_hits(laser, caster, sensor_pose):
     raw = np.where(hit, d, laser.range_max)
     retro = np.zeros(len(d))
     if hit.any():
-        table = caster.laser_retro() if hasattr(caster, 'laser_retro') else np.array(
-            [float(getattr(s, 'laser_retro', 0.0) or 0.0) for s in caster.shapes])
-        retro[hit] = np.asarray(table)[np.asarray(who)[hit]]
+        retro[hit] = caster.laser_retro()[np.asarray(who)[hit]]
     return raw, retro
 
 

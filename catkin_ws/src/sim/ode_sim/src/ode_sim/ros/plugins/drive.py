@@ -28,7 +28,7 @@ import rospy
 
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
-from ode_sim.ros.convert import fill_pose, fill_pose_tuples, transform_msg
+from ode_sim.ros.convert import joint_state_msg, odometry_msg, planar_twist, transform_msg
 from ode_sim.description.transforms import Pose, quat_from_rpy, yaw_of
 
 LEFT, RIGHT = 0, 1
@@ -43,12 +43,10 @@ class _Drive(Plugin):
         for j, w in zip(joints, speeds):
             j.set_velocity(w, fmax=fmax)
 
-    def _stamped(self, msg):
-        """Sim-time stamp and the odom -> base frame ids (tf_prefix resolved)."""
-        msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = self.odom_id
-        msg.child_frame_id = self.base_id
-        return msg
+    def _odometry(self, p, q, vx, vy, wz, pose_covariance=(), twist_covariance=()):
+        """nav_msgs/Odometry stamped now, odom -> base frame ids (tf_prefix resolved)."""
+        return odometry_msg(self.ctx.now(), self.odom_id, self.base_id, p, q, vx, vy, wz,
+                            pose_covariance, twist_covariance)
 
     def publish_odometry(self):
         """Odometry on the odometry topic, and odom -> base TF when the plugin's tag says so
@@ -84,7 +82,7 @@ class _Drive(Plugin):
                                               queue_size=1)
 
     def on_cmd_vel(self, msg):
-        self.cmd = (float(msg.linear.x), float(msg.angular.z))
+        self.cmd = planar_twist(msg)
 
     def base_state(self):
         """(Pose, linear velocity, angular velocity) of the base frame, world."""
@@ -106,16 +104,12 @@ class _Drive(Plugin):
         lin, ang = self.base_link.point_velocity(p)
         return p, q, lin, ang
 
-    def ground_truth_odometry(self, msg):
+    def ground_truth(self):
+        """(p, q, vx, vy, wz): the base's pose and its planar twist in its own heading."""
         p, q, lin, ang = self.base_tuples()
-        pose = Pose.unit(p, q)
-        fill_pose_tuples(msg.pose.pose, p, q)
         yaw = yaw_of(q)
         c, s = math.cos(yaw), math.sin(yaw)
-        msg.twist.twist.linear.x = c * lin[0] + s * lin[1]
-        msg.twist.twist.linear.y = c * lin[1] - s * lin[0]
-        msg.twist.twist.angular.z = float(ang[2])
-        return pose
+        return p, q, c * lin[0] + s * lin[1], c * lin[1] - s * lin[0], float(ang[2])
 
     def tf_wanted(self):
         """Whether transforms sent now reach anyone (TfBatch.wanted: /tf subscribed)."""
@@ -253,20 +247,15 @@ class DiffDrive(_Drive):
 
     def odometry(self):
         """nav_msgs/Odometry as the plugin publishes it now; also returns the base Pose."""
-        from nav_msgs.msg import Odometry
-        msg = Odometry()
         if self.odom_source == 'encoder':
             x, y, th = self.encoder
             pose = Pose((x, y, 0.0), quat_from_rpy(0.0, 0.0, th))
-            fill_pose(msg.pose.pose, pose)
-            msg.twist.twist.linear.x = self.encoder_twist[0]
-            msg.twist.twist.linear.y = 0.0
-            msg.twist.twist.angular.z = self.encoder_twist[1]
+            p, q = pose.tuples()
+            vx, vy, wz = self.encoder_twist[0], 0.0, self.encoder_twist[1]
         else:
-            pose = self.ground_truth_odometry(msg)
-        for i, v in ODOM_POSE_COVARIANCE.items():
-            msg.pose.covariance[i] = v
-        return self._stamped(msg), pose
+            p, q, vx, vy, wz = self.ground_truth()
+            pose = Pose.unit(p, q)
+        return self._odometry(p, q, vx, vy, wz, ODOM_POSE_COVARIANCE.items()), pose
 
     @property
     def odom_tf(self):
@@ -290,12 +279,8 @@ class DiffDrive(_Drive):
     def publish_joint_state(self):
         if not subscribed(self.joint_state_pub):
             return
-        from sensor_msgs.msg import JointState
-        msg = JointState()
-        msg.header.stamp = self.ctx.now()
-        msg.name = [j.name for j in self.joints]
-        msg.position = [float(j.position()) for j in self.joints]
-        self.joint_state_pub.publish(msg)
+        self.joint_state_pub.publish(joint_state_msg(
+            self.ctx.now(), [j.name for j in self.joints], [j.position() for j in self.joints]))
 
     def reset(self):
         super().reset()
@@ -366,15 +351,10 @@ class SkidSteerDrive(_Drive):
         self._set_wheels(self.joints, [s / r for s in (left, right, left, right)], self.torque)
 
     def odometry(self):
-        from nav_msgs.msg import Odometry
-        msg = Odometry()
-        pose = self.ground_truth_odometry(msg)
-        for cov in (msg.pose.covariance, msg.twist.covariance):
-            cov[0] = self.covariance_x
-            cov[7] = self.covariance_y
-            cov[14] = cov[21] = cov[28] = 1e12
-            cov[35] = self.covariance_yaw
-        return self._stamped(msg), pose
+        p, q, vx, vy, wz = self.ground_truth()
+        cov = ((0, self.covariance_x), (7, self.covariance_y), (14, 1e12), (21, 1e12),
+               (28, 1e12), (35, self.covariance_yaw))
+        return self._odometry(p, q, vx, vy, wz, cov, cov), Pose.unit(p, q)
 
     @property
     def odom_tf(self):

@@ -27,16 +27,10 @@ import rospy
 
 from ode_sim.ros.plugins.base import NO_WORK, Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
-from ode_sim.ros.convert import fill_vector
+from ode_sim.ros.convert import imu_msg
 from ode_sim.ros.plugins.state import gaussian, parse_vector
 from ode_sim.description.transforms import (Pose, qmul, qnormalize, qrotate_inv, quat_conjugate,
                                             quat_from_rpy)
-
-
-def _fill_cov(msg, gn2):
-    for cov in (msg.orientation_covariance, msg.angular_velocity_covariance,
-                msg.linear_acceleration_covariance):
-        cov[0] = cov[4] = cov[8] = gn2
 
 
 class _Imu(Plugin):
@@ -100,19 +94,13 @@ class GazeboRosImu(_Imu):
                                lambda req: EmptyResponse())
 
     def measure(self):
-        from sensor_msgs.msg import Imu
         q, omega, accel = self.frame_state()
         q = qnormalize(qmul(self._offset_q, q))
         n = self.noise
-        msg = Imu()
-        msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = self.frame_name
-        o = msg.orientation
-        o.x, o.y, o.z, o.w = q
-        fill_vector(msg.angular_velocity, [v + gaussian(self.rng, n) for v in omega])
-        fill_vector(msg.linear_acceleration, [v + gaussian(self.rng, n) for v in accel])
-        _fill_cov(msg, n * n)
-        return msg
+        stamp = self.ctx.now()
+        omega = [v + gaussian(self.rng, n) for v in omega]
+        accel = [v + gaussian(self.rng, n) for v in accel]
+        return imu_msg(stamp, self.frame_name, q, omega, accel, n * n)
 
     def next_update(self):
         return NO_WORK if self.pub is None else self._next_due()
@@ -197,7 +185,6 @@ class GazeboRosImuSensor(_Imu):
         self.pub = self.ctx.io.publisher(self.topic_name, Imu, SENSOR_QUEUE)
 
     def measure(self):
-        from sensor_msgs.msg import Imu
         q, omega, accel = self.frame_state()
         q = qmul(self._offset_q, qmul(self._reference_conj, q))
         rng = self.rng
@@ -206,15 +193,12 @@ class GazeboRosImuSensor(_Imu):
         omega = [v + mg + gaussian(rng, sg) for v in omega]
         accel = [v + ma + gaussian(rng, sa) for v in accel]
         n = self.noise
-        msg = Imu()
-        msg.header.stamp = self.ctx.now()
-        msg.header.frame_id = self.frame_name
-        o = msg.orientation
-        o.x, o.y, o.z, o.w = (v + gaussian(rng, n) for v in q)
-        fill_vector(msg.linear_acceleration, [v + gaussian(rng, n) for v in accel])
-        fill_vector(msg.angular_velocity, [v + gaussian(rng, n) for v in omega])
-        _fill_cov(msg, n * n)
-        return msg
+        stamp = self.ctx.now()
+        # the noise drawn in the original's order: orientation, acceleration, rate
+        q = tuple(v + gaussian(rng, n) for v in q)
+        accel = [v + gaussian(rng, n) for v in accel]
+        omega = [v + gaussian(rng, n) for v in omega]
+        return imu_msg(stamp, self.frame_name, q, omega, accel, n * n)
 
     def next_update(self):
         return self._next_due()
