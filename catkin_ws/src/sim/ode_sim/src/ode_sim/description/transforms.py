@@ -4,8 +4,12 @@
 `a.inverse()`; `a.apply(points)` maps points (N x 3) from the pose's frame to its parent.
 """
 import math
+from collections import namedtuple
 
 import numpy as np
+from course_runtime import geometry
+
+_Quaternion = namedtuple('_Quaternion', 'x y z w')    # course_runtime.geometry reads fields
 
 
 def quat_from_rpy(roll, pitch, yaw):
@@ -109,9 +113,9 @@ def qrotate_inv(q, v):
 
 
 def yaw_of(q):
-    """rpy_from_quat(q)[2]."""
-    x, y, z, w = q
-    return math.atan2(2 * (w * z + x * y), 1 - 2 * (y * y + z * z))
+    """rpy_from_quat(q)[2] of q = (x, y, z, w): course_runtime.geometry.yaw_of, the one
+    implementation the course's packages share."""
+    return geometry.yaw_of(_Quaternion(*q))
 
 
 class Pose:

@@ -47,12 +47,7 @@ from ode_sim.ros.convert import fill_pose
 from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.laser import tf_resolve
 from ode_sim.ros.plugins.rosio import close, subscribed
-from ode_sim.description.transforms import Pose
-
-
-def yaw_of(q):
-    x, y, z, w = q
-    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+from ode_sim.description.transforms import Pose, yaw_of
 
 
 def _root_ns(plugin):
