@@ -149,9 +149,10 @@ class WorldControl:
 
     def _pose_loop(self):
         while not rospy.is_shutdown():
-            time.sleep(POSE_PERIOD)
             if self.pose_pub.get_num_connections() == 0:
+                time.sleep(STATS_PERIOD / 2)     # nobody listens: look again 10 times a second
                 continue
+            time.sleep(POSE_PERIOD)
             try:
                 self.pose_pub.publish(self.pose_info())
             except rospy.ROSException:          # shutting down
