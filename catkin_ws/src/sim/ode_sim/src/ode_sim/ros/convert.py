@@ -234,3 +234,57 @@ def point_cloud_msg(depth, image_bytes, width, height, hfov, frame_id, stamp):
     msg.data = data
     msg.is_dense = dense
     return msg
+
+
+def xyz(msg_vec):
+    """(x, y, z) floats of a geometry_msgs/Vector3 or Point."""
+    return float(msg_vec.x), float(msg_vec.y), float(msg_vec.z)
+
+
+def rgba(msg_color):
+    """(r, g, b, a) floats of a std_msgs/ColorRGBA."""
+    return float(msg_color.r), float(msg_color.g), float(msg_color.b), float(msg_color.a)
+
+
+def color_msg(rgba_values):
+    """std_msgs/ColorRGBA of (r, g, b, a)."""
+    from std_msgs.msg import ColorRGBA
+    return ColorRGBA(*[float(v) for v in rgba_values])
+
+
+def entity_states_msg(msg, entries):
+    """Fill a gazebo_msgs/ModelStates or LinkStates from (name, Pose, (linear, angular))
+    entries, world frame. Returns the message."""
+    for name, pose, (lin, ang) in entries:
+        msg.name.append(name)
+        msg.pose.append(pose_msg(pose))
+        msg.twist.append(twist_msg(lin, ang))
+    return msg
+
+
+def performance_metrics_msg(t, real_time_factor):
+    """gazebo_msgs/PerformanceMetrics stamped at sim time t (s)."""
+    import rospy
+    from gazebo_msgs.msg import PerformanceMetrics
+    msg = PerformanceMetrics()
+    msg.header.stamp = rospy.Time.from_sec(t)
+    msg.real_time_factor = real_time_factor
+    return msg
+
+
+def ode_physics_msg(p, auto_disable, precon_iters):
+    """gazebo_msgs/ODEPhysics of a description Physics `p` as get_physics_properties reports
+    it (sor_pgs_rms_error_tol 0: Gazebo does not fill it either)."""
+    from gazebo_msgs.msg import ODEPhysics
+    o = ODEPhysics()
+    o.auto_disable_bodies = auto_disable
+    o.sor_pgs_precon_iters = int(precon_iters)
+    o.sor_pgs_iters = int(p.iters)
+    o.sor_pgs_w = float(p.sor)
+    o.sor_pgs_rms_error_tol = 0.0
+    o.contact_surface_layer = float(p.contact_surface_layer)
+    o.contact_max_correcting_vel = float(p.contact_max_correcting_vel)
+    o.cfm = float(p.cfm)
+    o.erp = float(p.erp)
+    o.max_contacts = int(p.max_contacts)
+    return o

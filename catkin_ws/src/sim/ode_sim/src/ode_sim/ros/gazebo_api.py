@@ -27,13 +27,13 @@ import numpy as np
 import rospy
 from gazebo_msgs import msg as gm
 from gazebo_msgs import srv as gs
-from geometry_msgs.msg import Vector3
 from std_srvs.srv import Empty, EmptyResponse
 from visualization_msgs.msg import MarkerArray
 
 from ode_sim.description.model import ModelError
 from ode_sim.description.transforms import Pose
-from ode_sim.ros.convert import pose_from_msg, pose_msg, twist_msg, vector
+from ode_sim.ros.convert import (entity_states_msg, fill_vector, ode_physics_msg,
+                                 performance_metrics_msg, pose_from_msg, vector)
 from ode_sim.ros.gazebo_forces import ForceServices
 from ode_sim.ros.gazebo_lights import (LightServices, _attenuation_of,  # noqa: F401 (world_control)
                                        light_attenuations)
@@ -199,28 +199,18 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         if t < t0:                      # reset_simulation: start over
             self._metrics_last = (wall, t)
             return
-        msg = gm.PerformanceMetrics()
-        msg.header.stamp = rospy.Time.from_sec(t)
-        msg.real_time_factor = (t - t0) / (wall - w0)
+        msg = performance_metrics_msg(t, (t - t0) / (wall - w0))
         self._metrics_last = (wall, t)
         self.metrics.publish(msg)
 
     def _model_states(self):
-        msg = gm.ModelStates()
-        for name, m in self.physics.models.items():
-            msg.name.append(name)
-            msg.pose.append(pose_msg(m.pose()))
-            msg.twist.append(twist_msg(*m.twist()))
-        return msg
+        return entity_states_msg(gm.ModelStates(), ((name, m.pose(), m.twist())
+                                                    for name, m in self.physics.models.items()))
 
     def _link_states(self):
-        msg = gm.LinkStates()
-        for mname, m in self.physics.models.items():
-            for lname, link in m.links.items():
-                msg.name.append('%s::%s' % (mname, lname))
-                msg.pose.append(pose_msg(link.pose()))
-                msg.twist.append(twist_msg(*link.velocity()))
-        return msg
+        return entity_states_msg(gm.LinkStates(), (
+            ('%s::%s' % (mname, lname), link.pose(), link.velocity())
+            for mname, m in self.physics.models.items() for lname, link in m.links.items()))
 
     def publish_markers(self):
         """(Under the node's lock.) Scene markers of every model not spawned from URDF (robots
@@ -237,6 +227,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
     # ----------------------------------------------------------------- spawning
     def _spawn(self, req, fmt):
         from ode_sim.description import sdf, urdf
+        from ode_sim.description.spawning import spawn_pose
         name = req.model_name
         if name in self.physics.models:
             return gs.SpawnModelResponse(False, 'SpawnModel: Failure - entity already exists.')
@@ -252,7 +243,8 @@ class GazeboApi(StateServices, ForceServices, LightServices):
             else:
                 desc = sdf.parse_sdf_model(req.model_xml, source, name=name)
             desc.name = name
-            desc.pose = ref[0] * pose_from_msg(req.initial_pose)
+            # initial_pose composed with the model's own pose, as gazebo_ros: spawning.py
+            desc.pose = spawn_pose(pose_from_msg(req.initial_pose), desc.pose, ref[0])
             desc.source = desc.source or source
             inject_namespace(desc, req.robot_namespace)
             self.node.add_model(desc)
@@ -321,17 +313,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         """The physics settings as get_physics_properties reports them:
         (time_step, max_update_rate, gravity, paused, ODEPhysics)."""
         p = self.node.world.physics
-        o = gm.ODEPhysics()
-        o.auto_disable_bodies = self._auto_disable
-        o.sor_pgs_precon_iters = int(self._precon_iters)
-        o.sor_pgs_iters = int(p.iters)
-        o.sor_pgs_w = float(p.sor)
-        o.sor_pgs_rms_error_tol = 0.0       # Gazebo does not fill it either
-        o.contact_surface_layer = float(p.contact_surface_layer)
-        o.contact_max_correcting_vel = float(p.contact_max_correcting_vel)
-        o.cfm = float(p.cfm)
-        o.erp = float(p.erp)
-        o.max_contacts = int(p.max_contacts)
+        o = ode_physics_msg(p, self._auto_disable, self._precon_iters)
         return (float(p.max_step_size), float(p.real_time_update_rate),
                 tuple(float(v) for v in self.physics.gravity), bool(self.node.paused), o)
 
@@ -340,7 +322,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         with self.node.lock:
             res.time_step, res.max_update_rate, g, res.pause, res.ode_config = \
                 self.physics_state()
-        res.gravity = Vector3(*g)
+        fill_vector(res.gravity, g)
         res.success = True
         res.status_message = 'GetPhysicsProperties: got properties'
         return res

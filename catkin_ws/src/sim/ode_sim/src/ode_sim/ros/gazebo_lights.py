@@ -6,9 +6,8 @@ and what set_light_properties sets. Cameras re-read the lights at their next fra
 import xml.etree.ElementTree as ET
 
 from gazebo_msgs import srv as gs
-from std_msgs.msg import ColorRGBA
 
-from ode_sim.ros.convert import pose_from_msg
+from ode_sim.ros.convert import color_msg, pose_from_msg, rgba, xyz
 
 # SDF 1.6 <light><attenuation> defaults
 ATTENUATION_DEFAULT = (1.0, 1.0, 0.0)
@@ -85,7 +84,7 @@ class LightServices:
             res.status_message = ('getLightProperties: Requested light %s not found!'
                                   % req.light_name)
             return res
-        res.diffuse = ColorRGBA(*[float(v) for v in light.diffuse])
+        res.diffuse = color_msg(light.diffuse)
         (res.attenuation_constant, res.attenuation_linear,
          res.attenuation_quadratic) = self._attenuation.get(light.name, ATTENUATION_DEFAULT)
         res.success = True
@@ -98,10 +97,9 @@ class LightServices:
                 False, 'setLightProperties: Requested light %s not found!' % req.light_name)
         with self.node.lock:
             light.cast_shadows = bool(req.cast_shadows)
-            d, sp = req.diffuse, req.specular
-            light.diffuse = (d.r, d.g, d.b, d.a)
-            light.specular = (sp.r, sp.g, sp.b, sp.a)
-            light.direction = (req.direction.x, req.direction.y, req.direction.z)
+            light.diffuse = rgba(req.diffuse)
+            light.specular = rgba(req.specular)
+            light.direction = xyz(req.direction)
             light.pose = pose_from_msg(req.pose)
             self._attenuation[light.name] = (req.attenuation_constant, req.attenuation_linear,
                                              req.attenuation_quadratic)

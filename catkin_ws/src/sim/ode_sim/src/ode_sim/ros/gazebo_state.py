@@ -6,10 +6,9 @@ read and written relative to a reference entity (GazeboApi._frame).
 """
 import rospy
 from gazebo_msgs import srv as gs
-from geometry_msgs.msg import Vector3
 
 from ode_sim.description.model import ModelError
-from ode_sim.ros.convert import pose_from_msg, pose_msg, twist_msg, vector
+from ode_sim.ros.convert import fill_vector, pose_from_msg, pose_msg, twist_msg, vector, xyz
 
 
 def _seen_from(ref, pose, lin, ang):
@@ -66,8 +65,7 @@ class StateServices:
         with self.node.lock:
             m.set_pose(rpose * pose_from_msg(state.pose))
             t = state.twist
-            m.set_twist(rpose.rotate([t.linear.x, t.linear.y, t.linear.z]),
-                        rpose.rotate([t.angular.x, t.angular.y, t.angular.z]))
+            m.set_twist(rpose.rotate(xyz(t.linear)), rpose.rotate(xyz(t.angular)))
         return True, 'SetModelState: set model state done'
 
     def set_model_state(self, req):
@@ -153,7 +151,7 @@ class StateServices:
         ine = link.desc.inertial
         res.gravity_mode = bool(link.desc.gravity)
         if ine is not None:
-            res.com.position = Vector3(*[float(v) for v in ine.pose.p])
+            fill_vector(res.com.position, ine.pose.p)
             res.mass = float(ine.mass)
             res.ixx, res.iyy, res.izz = float(ine.ixx), float(ine.iyy), float(ine.izz)
             res.ixy, res.ixz, res.iyz = float(ine.ixy), float(ine.ixz), float(ine.iyz)
@@ -169,7 +167,6 @@ class StateServices:
                 False, 'SetLinkProperties: link not found, did you forget to scope the link by '
                        'model name?')
         with self.node.lock:
-            c = req.com.position
             link.set_inertial(req.mass, (req.ixx, req.iyy, req.izz, req.ixy, req.ixz, req.iyz),
-                              (c.x, c.y, c.z), req.gravity_mode)
+                              xyz(req.com.position), req.gravity_mode)
         return gs.SetLinkPropertiesResponse(True, 'SetLinkProperties: properties set')
