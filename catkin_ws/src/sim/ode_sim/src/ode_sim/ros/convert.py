@@ -288,3 +288,49 @@ def ode_physics_msg(p, auto_disable, precon_iters):
     o.erp = float(p.erp)
     o.max_contacts = int(p.max_contacts)
     return o
+
+
+_MARKER_TYPES = {'cube': 'CUBE', 'cylinder': 'CYLINDER', 'sphere': 'SPHERE',
+                 'triangles': 'TRIANGLE_LIST'}
+
+
+def marker_msg(ns, kind, scale, rgba_values, points=None, colors=None):
+    """visualization_msgs/Marker (ADD, not frame-locked) of one shape: kind 'cube' |
+    'cylinder' | 'sphere' | 'triangles', scale (x, y, z), colour; a triangle list's vertices
+    (N, 3) and per-vertex colours. Header, id and pose: place_marker."""
+    from geometry_msgs.msg import Point
+    from visualization_msgs.msg import Marker
+    m = Marker()
+    m.action = Marker.ADD
+    m.ns = ns
+    m.color = color_msg(rgba_values)
+    m.frame_locked = False
+    m.type = getattr(Marker, _MARKER_TYPES[kind])
+    m.scale.x, m.scale.y, m.scale.z = scale
+    if points is not None:
+        m.points = [Point(float(x), float(y), float(z)) for x, y, z in points]
+    if colors is not None:
+        made = {}                       # one ColorRGBA per distinct colour, shared
+        m.colors = [made[c] if c in made else made.setdefault(c, color_msg(c)) for c in colors]
+    return m
+
+
+def place_marker(m, marker_id, frame, stamp, pose):
+    """Set a Marker's header, id and pose (a Pose); returns it."""
+    m.header.frame_id = frame
+    m.header.stamp = stamp
+    m.id = marker_id
+    m.pose = pose_msg(pose)
+    return m
+
+
+def scene_marker_array(frame, markers):
+    """visualization_msgs/MarkerArray: a DELETEALL in `frame` first, then `markers`."""
+    from visualization_msgs.msg import Marker, MarkerArray
+    arr = MarkerArray()
+    clear = Marker()
+    clear.header.frame_id = frame
+    clear.action = Marker.DELETEALL
+    arr.markers.append(clear)
+    arr.markers.extend(markers)
+    return arr
