@@ -115,6 +115,10 @@ class WorldPanel(QtWidgets.QWidget):
         self.lbl_self_collide.setText('-')
         self.lbl_mass.setText('-')
         if not is_model:
+            for sb in self.pose_boxes:
+                sb.blockSignals(True)
+                sb.setValue(0.0)
+                sb.blockSignals(False)
             return
         self.poses_changed(force=True)
         try:
