@@ -6,6 +6,8 @@ import signal
 import subprocess
 import time
 
+import pytest
+
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
 from gazebo_ros import gzclient
@@ -35,10 +37,14 @@ def window_names(display):
     return out
 
 
-def test_headless_one_line_exit_0(roscore):
+@pytest.mark.parametrize('qpa', [None, 'offscreen'])
+def test_headless_one_line_exit_0(roscore, qpa):
+    # also with the test runner's QT_QPA_PLATFORM=offscreen: no window without a display
     env = dict(roscore.env)
     env.pop('DISPLAY', None)
     env.pop('QT_QPA_PLATFORM', None)
+    if qpa:
+        env['QT_QPA_PLATFORM'] = qpa
     out = subprocess.run(['rosrun', 'gazebo_ros', 'gzclient', '__name:=gazebo_gui'], env=env,
                          capture_output=True, text=True, timeout=30)
     assert out.returncode == 0

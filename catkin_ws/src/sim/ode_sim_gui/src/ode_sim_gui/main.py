@@ -24,7 +24,7 @@ def yield_cpu():
 
 def main(argv=None):
     argv = sys.argv[1:] if argv is None else argv
-    if not os.environ.get('DISPLAY') and os.environ.get('QT_QPA_PLATFORM', '') != 'offscreen':
+    if not os.environ.get('DISPLAY'):
         print('[INFO] ' + NO_DISPLAY, flush=True)
         return 0
     import rospy
