@@ -1,16 +1,11 @@
 """spawn_model end to end: `rosrun gazebo_ros spawn_model ...` against a fake simulator
 (test/fake_gazebo.py) on a private roscore; the fake records every request it gets."""
-import functools
-import http.server
-import io
 import json
 import math
 import os
 import signal
 import subprocess
 import sys
-import tarfile
-import threading
 import time
 
 import pytest
@@ -120,52 +115,17 @@ def test_stdin(sim):
     assert sim.requests(model_name='cart4')[0]['model_xml'] == URDF
 
 
-def test_database(sim, tmp_path):
-    model = tmp_path / 'models' / 'crate'
-    model.mkdir(parents=True)
-    sdf = '<sdf version="1.6"><model name="crate"><static>true</static></model></sdf>'
-    (model / 'model.config').write_text('<model><name>crate</name>'
-                                        '<sdf version="1.6">crate.sdf</sdf></model>')
-    (model / 'crate.sdf').write_text(sdf)
-    # the model database as gzserver uses it: served from 127.0.0.1, HOME a temp folder
-    served = tmp_path / 'served'
-    (served / 'db_only_keg').mkdir(parents=True)
-    db_only_keg_sdf = '<sdf version="1.6"><model name="db_only_keg"><static>true</static></model></sdf>'
-    with tarfile.open(str(served / 'db_only_keg' / 'model.tar.gz'), 'w:gz') as tar:
-        for name, text in (('model.config', '<model><name>db_only_keg</name><sdf version="1.6">'
-                                            'model.sdf</sdf></model>'),
-                           ('model.sdf', db_only_keg_sdf)):
-            data = text.encode()
-            info = tarfile.TarInfo('db_only_keg/' + name)
-            info.size = len(data)
-            tar.addfile(info, io.BytesIO(data))
-    (served / 'database.config').write_text(
-        '<?xml version="1.0"?><database><name>gazebo_models</name><models>'
-        '<uri>file://db_only_keg</uri></models></database>')
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(served))
-    server = http.server.ThreadingHTTPServer(('127.0.0.1', 0), handler)
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    home = tmp_path / 'home'
-    home.mkdir()
-    env = dict(sim.env, GAZEBO_MODEL_PATH=str(tmp_path / 'models'), HOME=str(home),
-               GAZEBO_MODEL_DATABASE_URI='http://127.0.0.1:%d' % server.server_address[1])
-    try:
-        rc, out = spawn(sim, '-sdf', '-database', 'crate', '-model', 'crate1', env=env)
-        assert rc == 0, out
-        assert sim.requests(service='/gazebo/spawn_sdf_model', model_name='crate1')[0][
-            'model_xml'] == sdf
-        # not on the model paths: downloaded once into ~/.gazebo/models, then found there
-        rc, out = spawn(sim, '-sdf', '-database', 'db_only_keg', '-model', 'db_only_keg1', env=env)
-        assert rc == 0, out
-        assert sim.requests(service='/gazebo/spawn_sdf_model', model_name='db_only_keg1')[0][
-            'model_xml'] == db_only_keg_sdf
-        assert (home / '.gazebo' / 'models' / 'db_only_keg' / 'model.sdf').is_file()
-        rc, out = spawn(sim, '-sdf', '-database', 'no_such_model', '-model', 'x', env=env)
-        assert rc == 1 and '-database no_such_model: model://no_such_model: not found in ' \
-            'GAZEBO_MODEL_PATH' in out and 'nor in the model database' in out, out
-    finally:
-        server.shutdown()
-        server.server_close()
+def test_database(sim):
+    """-database sends the original's include (the simulator finds the model: ode_sim's
+    test_spawn_pose.py), with the name and pose of the request."""
+    rc, out = spawn(sim, '-sdf', '-database', 'crate', '-model', 'crate1', '-x', '1', '-y', '2',
+                    '-Y', '0.5')
+    assert rc == 0, out
+    req = sim.requests(service='/gazebo/spawn_sdf_model', model_name='crate1')[0]
+    assert req['model_xml'] == ('<sdf version="1.4">\n    <world name="default">\n'
+                                '        <include>\n            <uri>model://crate</uri>\n'
+                                '        </include>\n    </world>\n</sdf>')
+    assert req['pose'] == pytest.approx([1, 2, 0, 0, 0, math.sin(0.25), math.cos(0.25)])
 
 
 def test_invalid_xml_exits_1(sim):

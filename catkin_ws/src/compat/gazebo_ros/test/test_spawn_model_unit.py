@@ -1,8 +1,8 @@
 """spawn_model without a ROS master: arguments, model XML sources and checks, pose."""
 import io
 import math
-import os
 import random
+import xml.etree.ElementTree as ET
 
 import pytest
 
@@ -103,88 +103,21 @@ def test_stdin_source():
         sm.load_model_xml(a, stdin=io.StringIO(''))
 
 
-def make_model(base, name, files, config=None):
-    d = base / name
-    d.mkdir(parents=True)
-    for fname, text in files.items():
-        (d / fname).write_text(text)
-    if config is not None:
-        (d / 'model.config').write_text(config)
-    return d
-
-
-def env_of(tmp_path, *roots):
-    """An environment whose model paths are `roots` (then ~/.gazebo/models under tmp_path and
-    ode_sim's library), with no model database."""
-    return {'GAZEBO_MODEL_PATH': ':'.join(str(r) for r in roots),
-            'HOME': str(tmp_path / 'home'), 'GAZEBO_MODEL_DATABASE_URI': ''}
-
-
-def database(name, env):
-    return sm.load_model_xml(parse('-sdf', '-database', name, '-model', 'm'), env=env)
-
-
-def test_database_model_config_picks_newest_sdf(tmp_path):
-    config = ('<model><name>crate</name><sdf version="1.4">old.sdf</sdf>'
-              '<sdf version="1.6">new.sdf</sdf><sdf version="1.5">mid.sdf</sdf></model>')
-    make_model(tmp_path / 'a', 'crate', {'old.sdf': '<sdf/>', 'new.sdf': '<sdf version="1.6"/>',
-                                         'mid.sdf': '<sdf/>'}, config)
-    assert database('crate', env_of(tmp_path, tmp_path / 'a')) == '<sdf version="1.6"/>'
-
-
-def test_database_search_order_and_model_sdf_fallback(tmp_path):
-    make_model(tmp_path / 'first', 'cone', {'model.sdf': '<sdf>first</sdf>'})
-    make_model(tmp_path / 'second', 'cone', {'model.sdf': '<sdf>second</sdf>'})
-    env = env_of(tmp_path, tmp_path / 'none', tmp_path / 'first', tmp_path / 'second')
-    assert database('cone', env) == '<sdf>first</sdf>'
-    assert sm.database_model_sdf('cone', env) == str(tmp_path / 'first' / 'cone' / 'model.sdf')
-
-
-def test_database_errors(tmp_path):
-    env = env_of(tmp_path, tmp_path)
-    with pytest.raises(sm.SpawnError) as e:
-        database('ghost', env)
-    assert str(e.value).startswith('-database ghost: model://ghost: not found in '
-                                   'GAZEBO_MODEL_PATH, ~/.gazebo/models and the model library '
-                                   '(searched: %s, ' % tmp_path)
-    assert str(e.value).endswith('no model database (GAZEBO_MODEL_DATABASE_URI is empty)')
-    make_model(tmp_path, 'broken', {}, '<model><sdf version="1.6">gone.sdf</sdf></model>')
-    with pytest.raises(sm.SpawnError, match='gone.sdf, which does not exist'):
-        database('broken', env)
-    make_model(tmp_path, 'bad_config', {'model.sdf': '<sdf/>'}, '<model><sdf>')
-    with pytest.raises(sm.SpawnError, match='model.config: malformed XML'):
-        database('bad_config', env)
-
-
-def test_database_order_gazebo_model_path_then_home_then_library(tmp_path):
-    """Empty GAZEBO_MODEL_PATH entries are skipped; ~/.gazebo/models comes before ode_sim's
-    library (its ground_plane is shadowed by one in HOME)."""
-    make_model(tmp_path / 'b', 'cone', {'model.sdf': '<sdf>b</sdf>'})
-    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'cone', {'model.sdf': '<sdf>home</sdf>'})
-    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'ground_plane',
-               {'model.sdf': '<sdf>home ground</sdf>'})
-    env = env_of(tmp_path, tmp_path / 'a', '', tmp_path / 'b')
-    assert database('cone', env) == '<sdf>b</sdf>'
-    assert database('ground_plane', env) == '<sdf>home ground</sdf>'
-    assert 'ground_plane' in database('ground_plane', env_of(tmp_path / 'nohome'))
-
-
-def test_database_lookup_is_the_simulators(tmp_path, monkeypatch):
-    """spawn_model -database and the simulator's model:// (ode_sim.description.resolve) are one
-    implementation: the same roots in the same order, the same model.config choice."""
-    from ode_sim.description import resolve
-    make_model(tmp_path / 'env', 'cone', {'model.sdf': '<sdf>env</sdf>'})
-    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'cone', {'model.sdf': '<sdf>home</sdf>'})
-    make_model(tmp_path / 'home' / '.gazebo' / 'models', 'box', {'model.sdf': '<sdf>home</sdf>'})
-    monkeypatch.setenv('GAZEBO_MODEL_PATH', str(tmp_path / 'env'))
-    monkeypatch.setenv('HOME', str(tmp_path / 'home'))
-    assert resolve.ModelPaths().roots == [str(tmp_path / 'env'),
-                                          str(tmp_path / 'home' / '.gazebo' / 'models'),
-                                          os.path.join(resolve.package_dir(), 'models')]
-    for name in ('cone', 'box', 'ground_plane'):
-        assert sm.database_model_sdf(name) == resolve.ModelPaths().model_sdf(name)
-    assert sm.database_model_sdf('cone') == str(tmp_path / 'env' / 'cone' / 'model.sdf')
-    assert database('box', None) == '<sdf>home</sdf>'
+def test_database_sends_the_originals_include():
+    """-database MODEL sends gazebo_ros' template, <sdf><world><include><uri>model://MODEL:
+    the simulator finds the model (as gzserver) and keeps it an include; nothing is looked up
+    here, so a model only the simulator's machine has spawns too."""
+    text = sm.load_model_xml(parse('-sdf', '-database', 'traffic_cone', '-model', 'm'))
+    assert text == sm.database_include('traffic_cone')
+    root = ET.fromstring(text)
+    assert root.tag == 'sdf' and root.get('version') == '1.4'
+    world = root.find('world')
+    assert world.get('name') == 'default' and [c.tag for c in world] == ['include']
+    inc = world.find('include')
+    assert [c.tag for c in inc] == ['uri'] and inc.findtext('uri') == 'model://traffic_cone'
+    assert sm.process_xml(text) == text         # sent as it is
+    assert 'model://no_such_model' in sm.load_model_xml(
+        parse('-sdf', '-database', 'no_such_model', '-model', 'x'))
 
 
 # --------------------------------------------------------------------------------------- XML

@@ -32,8 +32,8 @@ def build_parser(default_robot_namespace='/'):
     src.add_argument('-file', metavar='FILE_NAME', help='load the model XML from a file')
     src.add_argument('-param', metavar='PARAM_NAME', help='load the model XML from a ROS parameter')
     src.add_argument('-database', metavar='MODEL_NAME',
-                     help='load model://MODEL_NAME from the model library (GAZEBO_MODEL_PATH, '
-                          'ode_sim/models)')
+                     help='spawn model://MODEL_NAME (an <include> the simulator finds on '
+                          'GAZEBO_MODEL_PATH, ~/.gazebo/models, its library or the model database)')
     src.add_argument('-stdin', action='store_true', help='read the model XML from standard input')
     parser.add_argument('-model', required=True, metavar='MODEL_NAME', help='name of the model')
     parser.add_argument('-reference_frame', default='',
@@ -76,24 +76,23 @@ def parse_args(argv, default_robot_namespace='/'):
 
 # ---------------------------------------------------------------------------------- model XML
 
-def _resolve():
-    """ode_sim's model lookup (ode_sim.description.resolve): the one implementation of
-    model:// search order and model.config, shared with the simulator."""
-    try:
-        from ode_sim.description import resolve
-    except ImportError as e:
-        raise SpawnError('-database needs the ode_sim package (its model lookup): %s' % e)
-    return resolve
+# What the original's -database sends: an include that the simulator resolves as gzserver does
+# (GAZEBO_MODEL_PATH, ~/.gazebo/models, the model library, then the model database), so the
+# spawned model stays a model:// include (ode_sim's Save World writes it back as one).
+MODEL_DATABASE_TEMPLATE = """\
+<sdf version="1.4">
+    <world name="default">
+        <include>
+            <uri>model://{}</uri>
+        </include>
+    </world>
+</sdf>"""
 
 
-def database_model_sdf(name, env=None):
-    """Path of the SDF file of model://name as gzserver finds it for the original's -database:
-    the model paths, then the model database (downloaded once into ~/.gazebo/models)."""
-    resolve = _resolve()
-    try:
-        return resolve.ModelPaths(env=env).model_sdf(name)
-    except resolve.ModelError as e:
-        raise SpawnError('-database %s: %s' % (name, e))
+def database_include(name):
+    """The SDF -database MODEL_NAME sends: the original's <sdf><world><include> of model://NAME
+    (the simulator applies the request's model name and initial pose, and finds the model)."""
+    return MODEL_DATABASE_TEMPLATE.format(name)
 
 
 def read_file(path):
@@ -111,10 +110,10 @@ def read_file(path):
     return text
 
 
-def load_model_xml(args, get_param=None, stdin=None, env=None):
+def load_model_xml(args, get_param=None, stdin=None):
     """The model XML named by the source argument. `get_param(name)` returns the parameter's
-    value or None; `stdin` is a file to read for -stdin; `env` (default os.environ) the
-    environment -database searches with (GAZEBO_MODEL_PATH, HOME, GAZEBO_MODEL_DATABASE_URI)."""
+    value or None; `stdin` is a file to read for -stdin; -database gives
+    database_include(MODEL_NAME)."""
     if args.file:
         return read_file(args.file)
     if args.param:
@@ -123,7 +122,7 @@ def load_model_xml(args, get_param=None, stdin=None, env=None):
             raise SpawnError('Error: param %s does not exist or is empty' % args.param)
         return value
     if args.database:
-        return read_file(database_model_sdf(args.database, env))
+        return database_include(args.database)
     if args.stdin:
         text = (stdin if stdin is not None else sys.stdin).read()
         if not text.strip():
@@ -229,8 +228,7 @@ class SpawnModelNode:
             elif args.param:
                 rospy.loginfo('Loading model XML from ros parameter %s', args.param)
             elif args.database:
-                rospy.loginfo('Loading model XML from the model library: model://%s',
-                              args.database)
+                rospy.loginfo('Loading model XML from Gazebo Model Database')
             else:
                 rospy.loginfo('Loading model XML from stdin')
             model_xml = load_model_xml(args, get_param=self._get_param)

@@ -269,14 +269,22 @@ def load_world(path, paths=None):
     return parse_world(data, path, paths)
 
 
+SPAWNABLE = ('model', 'light', 'include')
+
+
 def _spawn_element(text, source, paths):
     """(context, element) of a spawn request's SDF: the <model>, <light> or <include> that is
-    the root or the first of those children of <sdf>."""
+    the root or the first of those children of <sdf>, else the first of those in <sdf><world>
+    (gazebo_ros' spawn_model -database sends <sdf><world><include>, which gazebo_ros'
+    updateSDFAttributes looks for after <sdf><model>)."""
     doc = parse_xml(text, source)
     root = doc.root
-    el = root if root.tag in ('model', 'light', 'include') else None
+    el = root if root.tag in SPAWNABLE else None
     if el is None and root.tag == 'sdf':
-        el = next((c for c in root if c.tag in ('model', 'light', 'include')), None)
+        el = next((c for c in root if c.tag in SPAWNABLE), None)
+        world = root.find('world')
+        if el is None and world is not None:
+            el = next((c for c in world if c.tag in SPAWNABLE), None)
     if el is None:
         if root.tag == 'robot':
             raise doc.error(root, 'this is URDF (<robot>), not SDF: spawn it with -urdf')
@@ -309,12 +317,19 @@ def parse_sdf_light(text, source, paths=None, name=None):
 
 def parse_sdf_model(text, source, paths=None, name=None):
     """Model from SDF text whose root is <sdf><model> (or <model>), e.g. the model_xml of
-    /gazebo/spawn_sdf_model, or <sdf><include><uri>model://NAME</uri></include> (the model
-    remembers its URI, include_uri, for Save World); `name` replaces the model's name."""
+    /gazebo/spawn_sdf_model, or an include of a model://: <sdf><include>, <sdf><world><include>
+    (gazebo_ros' spawn_model -database) or <include> (the model remembers its URI, include_uri,
+    for Save World); `name` replaces the model's name.
+
+    Model.pose is the model's own pose that a spawn composes with its initial pose
+    (spawning.spawn_pose): the <model>'s <pose>; for an include the <include>'s <pose>, the
+    identity without one (gazebo_ros always writes a <pose> into the include, which replaces
+    the included file's own <pose>)."""
     ctx, mel = _spawn_element(text, source, paths)
     if mel.tag == 'light':
         raise ctx.doc.error(mel, 'this SDF describes a light, not a model')
     uri = ''
+    own = None
     if mel.tag == 'include':
         inc = mel
         mel, sub_ctx = _include_element(ctx, inc)
@@ -322,9 +337,12 @@ def parse_sdf_model(text, source, paths=None, name=None):
             raise ctx.err(inc, '<include> of a light: spawn it as a light')
         _apply_include_overrides(ctx, inc, mel)
         uri = text_of(inc, 'uri')
+        own = ctx.pose(inc)
         ctx = sub_ctx
     if name:
         mel.set('name', name)
     model = parse_model(ctx, mel)
     model.include_uri = uri
+    if own is not None:
+        model.pose = own
     return model

@@ -300,6 +300,10 @@ class _Parser(GazeboExtensions, FixedJointLumping):
                            % (loop[0], links[loop[0]].parent_joint.name))
 
         model = Model(name=self.model_name or robot_name, source=self.source)
+        # an <origin> right under <robot> (not in the URDF spec; gazebo_ros' updateURDFModelPose
+        # writes one and sdformat's URDF parser takes it as the model pose): the model's own
+        # pose, composed with a spawn's initial pose (spawning.spawn_pose); identity without
+        model.pose = self.origin(root)
         link_ext, joint_ext = self.parse_gazebo(root, links, joints, model)
         self.build(model, links, joints, root_name, order, link_ext, joint_ext)
         self.parse_transmissions(root, model, joints)
