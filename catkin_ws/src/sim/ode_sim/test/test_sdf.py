@@ -104,8 +104,14 @@ def test_textbook_world_sdf_1_4():
     assert w.warnings == []
 
 
-def test_features_world():
-    w = load_world(os.path.join(WORLDS, 'features.world'))
+@pytest.fixture
+def features():
+    """features.world, loaded with the test's model path (the autouse fixture)."""
+    return load_world(os.path.join(WORLDS, 'features.world'))
+
+
+def test_features_world(features):
+    w = features
     assert w.name == 'features' and w.gravity == (0, 0, -9.81)
     assert w.physics.max_step_size == 0.002 and w.physics.real_time_update_rate == 0
     assert w.physics.max_contacts == 10 and w.physics.solver_type == 'world'
@@ -118,6 +124,9 @@ def test_features_world():
     assert lights['spot'].cast_shadows and lights['spot'].direction == (0, 0, -1)
     assert [p.name for p in w.plugins] == ['world_plugin'] and w.plugins[0].params == {'rate': '5'}
 
+
+def test_features_world_crates(features):
+    w = features
     models = {m.name: m for m in w.models}
     assert set(models) == {'crate_1', 'crate_2', 'robot'}
     c1 = models['crate_1']
@@ -132,6 +141,9 @@ def test_features_world():
     assert lid.color == (0.2, 0.3, 0.4, 1.0)                          # diffuse wins
     assert np.allclose(lid.geometry.vertices.max(axis=0), [0.5, 0.5, 0.02])
 
+
+def test_features_world_robot_links_and_sensors(features):
+    models = {m.name: m for m in features.models}
     r = models['robot']
     assert r.canonical_link == 'base' and not r.static
     assert np.allclose(r.pose.p, [0, 0, 0.1])
@@ -174,6 +186,9 @@ def test_features_world():
     assert depth.type == 'depth' and depth.params['width'] == 64
     assert depth.params['horizontal_fov'] == 1.047 and depth.params['far'] == 100  # defaults
 
+
+def test_features_world_robot_joints_and_plugin(features):
+    r = {m.name: m for m in features.models}['robot']
     # joints: anchor = child pose * joint pose; 1.6 axis in the joint frame (child rotated 90
     # deg about z, so x becomes y) unless use_parent_model_frame
     hinge = r.joint('hinge')
