@@ -51,10 +51,17 @@ def sim_time():
 
 def api():
     out = {}
+    t0 = _api_spawning(out)
+    _api_running(out, t0)
+    _api_physics(out)
+    _api_resets(out)
+    return out
+
+
+def _api_spawning(out):
+    """Spawning while paused; returns the sim time it stands at."""
     spawn = svc('/gazebo/spawn_urdf_model', gs.SpawnModel)
     spawn_sdf = svc('/gazebo/spawn_sdf_model', gs.SpawnModel)
-    pause = svc('/gazebo/pause_physics', Empty)
-    unpause = svc('/gazebo/unpause_physics', Empty)
     # paused at start (-u): time stands still
     t0 = sim_time()
     time.sleep(0.5)
@@ -76,7 +83,12 @@ def api():
     out['world'] = svc('/gazebo/get_world_properties', gs.GetWorldProperties)().model_names
     props = svc('/gazebo/get_model_properties', gs.GetModelProperties)('arm')
     out['props'] = [props.body_names, props.joint_names, props.is_static]
-    unpause()
+    return t0
+
+
+def _api_running(out, t0):
+    """Running: states, configuration, set_model_state, a wrench."""
+    svc('/gazebo/unpause_physics', Empty)()
     time.sleep(1.0)
     t1 = sim_time()
     out['running'] = t1 > t0
@@ -117,11 +129,16 @@ def api():
     out['wrench'] = r.success
     time.sleep(1.0)
     out['pushed'] = state('cone')['xyz']
-    # physics properties
+
+
+def _api_physics(out):
+    """get/set_physics_properties: as fast as possible, a change of the step."""
+    pause = svc('/gazebo/pause_physics', Empty)
+    unpause = svc('/gazebo/unpause_physics', Empty)
     phys = svc('/gazebo/get_physics_properties', gs.GetPhysicsProperties)()
     out['physics'] = [phys.time_step, phys.max_update_rate, phys.gravity.z,
                       phys.ode_config.sor_pgs_iters, phys.pause]
-    r = svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
+    svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
         phys.time_step, 0.0, phys.gravity, phys.ode_config)
     a = sim_time()
     time.sleep(1.0)
@@ -143,7 +160,12 @@ def api():
     t3 = sim_time()
     unpause()
     out['step_change'] = [t0, t1, t2, t3]
-    # resets
+
+
+def _api_resets(out):
+    """reset_world, reset_simulation, pause again, delete_model."""
+    pause = svc('/gazebo/pause_physics', Empty)
+    unpause = svc('/gazebo/unpause_physics', Empty)
     before = sim_time()
     svc('/gazebo/reset_world', Empty)()
     out['reset_world'] = [state('arm')['xyz'], sim_time() >= before]
@@ -160,7 +182,6 @@ def api():
                                                    gs.GetWorldProperties)().model_names]
     r = svc('/gazebo/delete_model', gs.DeleteModel)('cone_rel')
     out['delete_again'] = [r.success, r.status_message]
-    return out
 
 
 def main():
