@@ -94,7 +94,15 @@ def mode_services():
     spawn_sdf = svc('/gazebo/spawn_sdf_model', gs.SpawnModel)
     out['spawn'] = spawn('arm', ROBOT, '', pose(0, 0, 0.1), '').success
     out['spawn_box'] = spawn_sdf('box', BOX, '', pose(2, 0, 1.0), '').success
-    # lights
+    _lights(out)
+    _links(out)
+    _joints_and_wrenches(out)
+    _world_and_ghosts(out)
+    return out
+
+
+def _lights(out):
+    """get/set_light_properties, delete_light."""
     get_light = svc('/gazebo/get_light_properties', gs.GetLightProperties)
     r = get_light('sun')
     out['sun'] = [r.success, [r.diffuse.r, r.diffuse.g, r.diffuse.b, r.diffuse.a],
@@ -118,7 +126,10 @@ def mode_services():
     out['sun_gone'] = get_light('sun').success
     r = delete_light('sun')
     out['delete_again'] = [r.success, r.status_message]
-    # links
+
+
+def _links(out):
+    """get/set_link_properties."""
     get_link = svc('/gazebo/get_link_properties', gs.GetLinkProperties)
     r = get_link('arm::arm')
     out['arm_link'] = [r.success, r.mass, [r.com.position.x, r.com.position.y,
@@ -133,7 +144,11 @@ def mode_services():
     out['box_after'] = [r.mass, r.gravity_mode, r.ixx]
     r = set_link('nowhere::link', Pose(), True, 1, 0, 0, 0, 0, 0, 0)
     out['set_no_link'] = [r.success, r.status_message]
-    # joints and efforts in a sim-time window
+
+
+def _joints_and_wrenches(out):
+    """Joint efforts in a sim-time window, a body wrench, clear_joint_forces,
+    set_joint_properties."""
     get_joint = svc('/gazebo/get_joint_properties', gs.GetJointProperties)
     r = get_joint('elbow')
     out['no_joint'] = [r.success, r.status_message]
@@ -179,6 +194,10 @@ def mode_services():
     out['set_joint'] = [r.success, r.status_message]
     run_until(sim_time() + 0.3)
     out['motor_rate'] = get_joint('shoulder').rate[0]
+
+
+def _world_and_ghosts(out):
+    """get_world_properties, get_physics_properties, a missing model."""
     r = svc('/gazebo/get_world_properties', gs.GetWorldProperties)()
     out['world'] = [r.sim_time, r.rendering_enabled, sorted(r.model_names), r.success,
                     r.status_message]
@@ -192,7 +211,6 @@ def mode_services():
     out['delete_ghost'] = [r.success, r.status_message]
     r = svc('/gazebo/get_model_state', gs.GetModelState)('ghost', '')
     out['state_ghost'] = [r.success, r.status_message]
-    return out
 
 
 def mode_reconfigure():
