@@ -252,6 +252,20 @@ class SimJoint:
         if was or self.active:          # the compiled loop's joint rows change
             self.world_ref._refresh_active()
 
+    def set_ode_properties(self, damping=None, params=()):
+        """set_joint_properties: the joint's viscous damping (None: unchanged) and ODE joint
+        parameters as (dParam number of libode 0.16, value) pairs, on hinges and sliders only;
+        a motor setting (vel, fmax: P_VEL, P_FMAX) wakes the child link."""
+        if damping is not None:
+            self.desc.damping = float(damping)
+            self._update_active()
+        if self.hinge or self.slider:
+            params = list(params)
+            for num, value in params:
+                self.joint.setParam(num, float(value))
+            if any(num in (P_VEL, P_FMAX) for num, _ in params):
+                self.child.wake()
+
     def set_effort(self, effort):
         """Apply this effort every step until changed (clamped to the URDF effort limit)."""
         self.vel_cmd = None

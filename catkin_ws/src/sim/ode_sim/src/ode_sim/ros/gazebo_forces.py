@@ -135,14 +135,8 @@ class ForceServices:
                 return gs.SetJointPropertiesResponse(False,
                                                      'SetJointProperties: joint not found')
             c = req.ode_joint_config
-            if c.damping:
-                joint.desc.damping = float(c.damping[0])
-                joint._update_active()
-            if joint.hinge or joint.slider:
-                for field, num in ODE_PARAMS:
-                    values = getattr(c, field)
-                    if values:
-                        joint.joint.setParam(num, float(values[0]))
-                if c.vel or c.fmax:
-                    joint.child.wake()
+            joint.set_ode_properties(
+                damping=c.damping[0] if c.damping else None,
+                params=[(num, getattr(c, field)[0]) for field, num in ODE_PARAMS
+                        if getattr(c, field)])
         return gs.SetJointPropertiesResponse(True, 'SetJointProperties: properties set')
