@@ -1,9 +1,9 @@
 """The 3D panel's scene editor in headless Chromium against a real simulator
 (test/sim_editor.launch: web.launch and gazebo_ros' empty_world.launch, sim_node), driven as a
 student does PW4 / lab 4 in the browser: the Insert list is the simulator's model library,
-insert a library model and a box by clicking on the ground, move the box by dragging it with
-the mouse and the table with the pose fields, pause and step 100 steps (sim time advances by
-exactly 100 x max_step_size), save the world (a download) and check the file: the models at
+insert a library model and a box by clicking on the ground, move and turn the box by dragging
+it with the mouse, pause and step 100 steps (sim time advances by exactly 100 x max_step_size),
+move the table with the pose fields while paused (the view shows it there), save the world (a download) and check the file: the models at
 their moved poses, and sim_node loads it back to the same poses. Clients without the token /
 rosauth MAC get nothing."""
 import os
@@ -24,7 +24,8 @@ sys.path.insert(0, HERE)
 from test_browser import Stack, _chrome, _port_open  # noqa: E402  (the same browser set-up)
 
 TOKEN = 'beefcafe' * 4
-VIEW = ({'x': 0, 'y': 0, 'w': 1600, 'h': 900}, {'fixed': 'odom', 'distance': 9, 'follow': False, 'robot': False})
+# the panel and its canvas wholly inside the window (1700 x 1000): pointer offsets stay exact
+VIEW = ({'x': 0, 'y': 0, 'w': 1200, 'h': 760}, {'fixed': 'odom', 'distance': 9, 'follow': False, 'robot': False})
 LIBRARY_MODEL = 'table'
 
 
@@ -36,10 +37,25 @@ class Editor(Stack):
         self.driver.find_element('css selector', css).click()
 
     def canvas_offset(self, x, y):
-        """Offsets from the canvas' centre (Selenium's origin) of the client point x, y."""
+        """Offsets of the client point x, y from Selenium's origin for the canvas: the centre of
+        its part inside the viewport (WebDriver's in-view centre point)."""
         r = self.js("const r = document.querySelector('.view3d-canvas').getBoundingClientRect();"
-                    "return [r.left + r.width / 2, r.top + r.height / 2];")
+                    "const l = Math.max(0, r.left), t = Math.max(0, r.top),"
+                    " R = Math.min(innerWidth, r.right), B = Math.min(innerHeight, r.bottom);"
+                    "return [Math.floor((l + R) / 2), Math.floor((t + B) / 2), innerHeight];")
+        assert 0 <= y < r[2] and self.js(
+            "const r = document.querySelector('.view3d-canvas').getBoundingClientRect();"
+            "return r.top >= 0 && r.bottom <= innerHeight && r.left >= 0 && r.right <= innerWidth;"), \
+            'the canvas is not wholly inside the window (point %.0f, %.0f)' % (x, y)
         return int(round(x - r[0])), int(round(y - r[1]))
+
+    def type_into(self, css, text):
+        """Select the field's text and type over it, as a student does."""
+        from selenium.webdriver.common.keys import Keys
+        f = self.driver.find_element('css selector', css)
+        f.send_keys(Keys.CONTROL, 'a')
+        f.send_keys(text)
+        assert f.get_attribute('value') == text, (css, f.get_attribute('value'), text)
 
     def click_canvas(self, dx, dy):
         from selenium.webdriver.common.action_chains import ActionChains
@@ -145,30 +161,32 @@ def test_move_the_box_with_the_mouse(ed):
     for _ in range(6):
         chain = chain.move_by_offset(-20, 0).pause(0.05)
     chain.release().perform()
-    s.wait(lambda: s.sim()['info'].startswith('set unit_box to x'), 'the move set by set_model_state')
+    s.wait(lambda: s.sim()['info'].startswith('set unit_box to x'),
+           'the move set by set_model_state (the press at %s was on %s; the box at %s)'
+           % (s.sim()['lastDown'], s.sim()['lastPick'], (x, y)))
     after = s.model_state('unit_box')
     moved = np.hypot(after['position']['x'] - before['position']['x'],
                      after['position']['y'] - before['position']['y'])
     assert moved > 0.3, 'the box moved %.3f m after a 120 px drag' % moved
     assert abs(after['position']['z'] - before['position']['z']) < 0.05
+    # rotate: a drag to the right turns it about z (0.01 rad a pixel), in place
+    s.click('.sim-mode-rotate')
+    s.wait(lambda: s.sim()['selectedAt'] and not s.sim()['held'], 'the view with the moved box (pose_info)')
+    x, y = s.sim()['selectedAt']
+    dx, dy = s.canvas_offset(x, y)
+    chain = ActionChains(s.driver).move_to_element_with_offset(canvas, dx, dy).click_and_hold()
+    for _ in range(4):
+        chain = chain.move_by_offset(15, 0).pause(0.05)
+    info = s.sim()['info']
+    chain.release().perform()
+    s.wait(lambda: s.sim()['info'] != info and s.sim()['info'].startswith('set unit_box to x'),
+           'the rotation set (the press was on %s)' % s.sim()['lastPick'])
+    turned = s.model_state('unit_box')
+    yaw = 2 * np.arctan2(turned['orientation']['z'], turned['orientation']['w'])
+    assert 0.4 < yaw < 0.8, 'yaw %.3f rad after a 60 px drag (0.6 expected)' % yaw
+    assert np.hypot(turned['position']['x'] - after['position']['x'],
+                    turned['position']['y'] - after['position']['y']) < 0.01, (after, turned)
     s.click('.sim-mode-select')
-
-
-def test_set_the_table_pose_in_the_fields(ed):
-    s = ed
-    s.js("const sel = document.querySelector('.sim-model'); sel.value = arguments[0];"
-         " sel.dispatchEvent(new Event('change'))", LIBRARY_MODEL)
-    s.wait(lambda: s.sim()['selected'] == LIBRARY_MODEL and s.sim()['selPose'], 'the table selected')
-    for k, v in (('x', '-1.5'), ('y', '2.25'), ('yaw', '0.7')):
-        f = s.driver.find_element('css selector', '.sim-pose-' + k)
-        f.clear()
-        f.send_keys(v)
-    s.click('.sim-apply')
-    s.wait(lambda: abs(s.model_state(LIBRARY_MODEL)['position']['x'] + 1.5) < 1e-6, 'the table at x -1.5')
-    p = s.model_state(LIBRARY_MODEL)
-    assert abs(p['position']['y'] - 2.25) < 1e-6
-    yaw = 2 * np.arctan2(p['orientation']['z'], p['orientation']['w'])
-    assert abs(yaw - 0.7) < 1e-6, p
 
 
 def test_pause_and_step_100(ed):
@@ -179,12 +197,9 @@ def test_pause_and_step_100(ed):
     s.wait(lambda: (lambda a: time.sleep(0.5) or (a if a == s.sim()['simTime'] else None))(s.sim()['simTime']),
            'sim time to stand still while paused')
     step = s.sim()['stepSize']
-    f = s.driver.find_element('css selector', '.sim-steps')
-
     def steps(n):
         before = s.sim()['lastStep']
-        f.clear()
-        f.send_keys(str(n))
+        s.type_into('.sim-steps', str(n))
         s.click('.sim-step')
         return s.wait(lambda: s.sim()['lastStep'] != before and s.sim()['lastStep'], 'the answer of step_world')
     one = steps(1)
@@ -199,12 +214,30 @@ def test_pause_and_step_100(ed):
     assert s.sim()['paused'] is True
 
 
+def test_set_the_table_pose_in_the_fields(ed):
+    s = ed
+    s.js("const sel = document.querySelector('.sim-model'); sel.value = arguments[0];"
+         " sel.dispatchEvent(new Event('change'))", LIBRARY_MODEL)
+    s.wait(lambda: s.sim()['selected'] == LIBRARY_MODEL and s.sim()['selPose'], 'the table selected')
+    for k, v in (('x', '-1.5'), ('y', '2.25'), ('yaw', '0.7')):
+        s.type_into('.sim-pose-' + k, v)
+    s.click('.sim-apply')
+    s.wait(lambda: abs(s.model_state(LIBRARY_MODEL)['position']['x'] + 1.5) < 1e-6, 'the table at x -1.5')
+    p = s.model_state(LIBRARY_MODEL)
+    assert abs(p['position']['y'] - 2.25) < 1e-6
+    yaw = 2 * np.arctan2(p['orientation']['z'], p['orientation']['w'])
+    assert abs(yaw - 0.7) < 1e-6, p
+    # paused, the view shows it there (the scene markers moved by /gazebo/pose_info)
+    assert s.sim()['paused'] is True
+    s.wait(lambda: s.sim()['selCentre'] and np.hypot(s.sim()['selCentre'][0] + 1.5, s.sim()['selCentre'][1] - 2.25) < 0.2,
+           'the table drawn at -1.5, 2.25 while paused')
+    s.shot('.view3d-canvas', 'table_moved_paused')
+
+
 def test_save_world_and_load_it_back(ed, tmp_path):
     s = ed
     poses = {n: s.model_state(n) for n in (LIBRARY_MODEL, 'unit_box')}
-    f = s.driver.find_element('css selector', '.sim-file')
-    f.clear()
-    f.send_keys('browser_scene.world')
+    s.type_into('.sim-file', 'browser_scene.world')
     s.click('.sim-save')
     path = os.path.join(s.downloads, 'browser_scene.world')
     s.wait(lambda: os.path.isfile(path) and not os.path.exists(path + '.crdownload') and
@@ -271,22 +304,49 @@ def test_clients_without_token_or_mac_get_nothing(ed):
         urllib.request.urlopen(req, timeout=10)
     body = e.value.read().decode()
     assert e.value.code == 404 and body.count('\n') == 1 and 'no_such_model' in body, body
-    # a WebSocket client without rosauth's MAC is closed before any simulator service runs
+    # a WebSocket client without rosauth's MAC gets one status line and is closed before any
+    # simulator service runs
+    import json
     import subprocess
     sys.path.insert(0, os.path.join(subprocess.check_output(
         ['rospack', 'find', 'rosbridge_server'], env=s.env, text=True).strip(), 'test'))
     from wsclient import WsClient
     c = WsClient(s.bridge)
-    closed = None
+    said, closed = [], None
     try:
         c.send(op='call_service', service='/gazebo/delete_model', id='x',
                args={'model_name': LIBRARY_MODEL})
         while True:
             m = c.recv()
             assert not (isinstance(m, dict) and m.get('op') == 'service_response'), m
+            if isinstance(m, dict) and m.get('op') == 'status':
+                said.append(m['msg'])
     except (ConnectionError, OSError) as e:
         closed = str(e)
     finally:
         c.close()
     assert closed, 'rosbridge answered a client without authentication'
+    assert said == ["authentication required: its first op was 'call_service', not auth"], said
     assert LIBRARY_MODEL in s.sim()['models'] and s.model_state(LIBRARY_MODEL)
+    # an authenticated client with bad requests: one line each, from rosbridge or the simulator
+    req = urllib.request.Request('http://127.0.0.1:%d/rosauth' % s.web,
+                                 headers={'Authorization': 'token ' + TOKEN})
+    auth = json.loads(urllib.request.urlopen(req, timeout=10).read())
+    c = WsClient(s.bridge)
+    answers = {}
+    try:
+        c.send(**auth)
+        c.send(op='call_service', service='/gazebo/step_world', id='type', args={'steps': 'many'})
+        c.send(op='call_service', service='/gazebo/spawn_sdf_model', id='xml',
+               args={'model_name': 'bad', 'model_xml': '<sdf version="1.6"><model name="bad">'})
+        while len(answers) < 2:
+            m = c.recv()
+            if isinstance(m, dict) and m.get('op') == 'service_response':
+                answers[m['id']] = m
+    finally:
+        c.close()
+    assert answers['type']['result'] is False and isinstance(answers['type']['values'], str) and \
+        '\n' not in answers['type']['values'].strip() and 'steps' in answers['type']['values'], answers
+    xml = answers['xml']
+    assert xml['result'] is True and xml['values']['success'] is False, xml
+    assert '\n' not in xml['values']['status_message'] and 'spawn_sdf_model(bad)' in xml['values']['status_message'], xml

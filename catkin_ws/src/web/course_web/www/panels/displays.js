@@ -164,13 +164,13 @@ export function markers(THREE, topic) {
     framed.add(pose);
     framed.userData.ns = m.ns;          // the 3D panel's editor picks models by it
     object.add(framed);
-    live.set(k, { obj: framed, frame: m.header.frame_id, ns: m.ns, pose: m.pose });
+    live.set(k, { obj: framed, frame: m.header.frame_id, ns: m.ns, pose: m.pose, stamp: m.header.stamp });
   };
   return {
     object,
     update(msg) { (msg.markers || [msg]).forEach(one); },
     place(setPose) { live.forEach(e => setPose(e.obj, e.frame)); },
-    // the markers of one namespace (all with null): [{obj, frame, ns, pose}], for the 3D
+    // the markers of one namespace (all with null): [{obj, frame, ns, pose, stamp}], for the 3D
     // panel's editor
     entries: ns => [...live.values()].filter(e => ns === null || e.ns === ns),
     stats: () => ({ count: live.size }),

@@ -78,7 +78,7 @@ const samePose = (a, b) => ['x', 'y', 'z'].every(k => Math.abs(a.position[k] - b
 
 // ctx: {ros, bar (element for the tool rows), holder (the canvas' parent), canvas, camera,
 // controls, scene, markers() (the scene markers display or null), toFixed(frame) (Matrix4 of a
-// frame in the view's fixed frame or null), dirty()}
+// frame in the view's fixed frame or null), dirty(), relayout() (the tool rows changed height)}
 export function attachSimEditor(ctx) {
   const { ros, camera, controls, scene, canvas } = ctx;
   const info = el('span', { className: 'sim-info' });
@@ -149,37 +149,77 @@ export function attachSimEditor(ctx) {
     insertList, el('div', { className: 'row' }, info));
 
   // ---------------------------------------------------------------- the world's models
-  let names = [];              // model names (get_world_properties: also while paused)
+  let names = [];              // model names (pose_info, get_world_properties: also while paused)
   let namesAt = 0;
   let selected = '';
-  let selPose = null;          // the selected model's pose in the world (get_model_state)
-  const previews = new Map();  // model -> {D: Matrix4 in world, key, pose: marker pose when set}
-  const refresh = async () => {
-    const r = await callService(ros, `${G}/get_world_properties`, 'gazebo_msgs/GetWorldProperties', {});
-    if (!r.success) return;
-    names = r.model_names.slice();
+  let selPose = null;          // the selected model's pose in the world
+  const setNames = list => {
+    names = list.slice();
     namesAt = performance.now();
     if (selected && !names.includes(selected)) select('');
     if (modelSel.options.length !== names.length + 1 || names.some((n, i) => modelSel.options[i + 1].value !== n)) {
       modelSel.replaceChildren(new Option('—', ''), ...names.map(n => new Option(n, n)));
     }
     modelSel.value = selected;
-    if (selected) await loadPose(selected);
+  };
+  const refresh = async () => {
+    const r = await callService(ros, `${G}/get_world_properties`, 'gazebo_msgs/GetWorldProperties', {});
+    if (!r.success) return;
+    setNames(r.model_names);
+    if (selected && !poseLive()) await loadPose(selected);
     ctx.dirty();
   };
   let refreshTimer = 0;
   const refreshSoon = () => { clearTimeout(refreshTimer); refreshTimer = setTimeout(() => refresh().catch(() => {}), 50); };
-  // polled only with a simulator (world_stats seen): no calls of missing services otherwise
-  const poll = setInterval(() => { if (stats) refresh().catch(() => {}); }, 2000);
+  // polled only with a simulator (world_stats seen) that sends no pose_info: no calls of
+  // missing services otherwise
+  const poll = setInterval(() => { if (stats && !poseLive()) refresh().catch(() => {}); }, 2000);
+
+  // live poses: /gazebo/pose_info (gzclient's ~/pose/info), running or paused. The scene
+  // markers come every 2 s with the poses of their stamp; each model's markers are moved by
+  // (its pose now) * (its pose at the markers' stamp)^-1, so moves, pushes and falls show at
+  // once, also while paused.
+  let poses = new Map();       // model -> pose (latest)
+  let poseAt = 0;
+  const history = [];          // [{t: sim time, poses}]: the FIRST message of each sim time
+  const poseLive = () => performance.now() - poseAt < 1500;
+  let hold = null;             // {name, D, answered}: a drag's move until pose_info has it
+  const unsubPoses = subscribe(ros, `${G}/pose_info`, 'ode_sim_msgs/PoseInfo', m => {
+    const map = new Map(m.model_name.map((n, i) => [n, m.model_pose[i]]));
+    const t = secs(m.sim_time);
+    if (!history.length || t > history[history.length - 1].t) history.push({ t, poses: map });
+    else if (t < history[history.length - 1].t) history.splice(0, history.length, { t, poses: map });   // reset
+    while (history.length > 100) history.shift();
+    poses = map;
+    poseAt = performance.now();
+    if (hold && hold.answered) hold = null;
+    setNames(m.model_name);
+    if (selected && map.has(selected)) { selPose = map.get(selected); if (!editing()) showPose(selPose); }
+    ctx.dirty();
+  }, { throttle_rate: 100, queue_length: 1 });
+  // a model's pose at sim time t (the first message at or after t), or null
+  const poseAtTime = (name, t) => {
+    const h = history.find(e => e.t >= t - 1e-9);
+    return h ? h.poses.get(name) || null : null;
+  };
 
   const loadPose = async name => {
+    if (poseLive() && poses.has(name)) {
+      selPose = poses.get(name);
+      if (!editing()) showPose(selPose);
+      return;
+    }
     const r = await callService(ros, `${G}/get_model_state`, 'gazebo_msgs/GetModelState', { model_name: name, relative_entity_name: '' });
     if (!r.success || name !== selected) return;
     selPose = r.pose;
     if (!editing()) showPose(r.pose);
   };
-  const editing = () => Object.values(poseIn).includes(document.activeElement);
+  // fields the student typed into keep their values until Set pose or another selection
+  let typed = false;
+  Object.values(poseIn).forEach(f => ['input', 'change'].forEach(k => f.addEventListener(k, () => { typed = true; })));
+  const editing = () => typed || Object.values(poseIn).includes(document.activeElement);
   const showPose = p => {
+    typed = false;
     const [r, pi, y] = quatToRpy(p.orientation);
     const v = { x: p.position.x, y: p.position.y, z: p.position.z, roll: r, pitch: pi, yaw: y };
     for (const k in poseIn) poseIn[k].value = v[k].toFixed(3);
@@ -187,6 +227,7 @@ export function attachSimEditor(ctx) {
   const select = name => {
     selected = name;
     selPose = null;
+    typed = false;
     modelSel.value = name;
     if (!name) for (const k in poseIn) poseIn[k].value = '';
     else loadPose(name).catch(e => fail('get_model_state', e));
@@ -194,21 +235,14 @@ export function attachSimEditor(ctx) {
   };
   modelSel.onchange = () => select(modelSel.value);
 
-  const setPose = async (name, pose, preview) => {
+  const setPose = async (name, pose) => {
     const r = await callService(ros, `${G}/set_model_state`, 'gazebo_msgs/SetModelState', { model_state: {
       model_name: name, pose, twist: { linear: { x: 0, y: 0, z: 0 }, angular: { x: 0, y: 0, z: 0 } }, reference_frame: 'world' } });
-    if (!r.success) throw new Error(r.status_message);
-    // the view shows the move until the scene markers catch up (not while paused)
-    const m = ctx.markers();
-    const first = m && m.entries(MODEL_NS + name)[0];
-    if (first && selPose) {
-      const D = preview || poseMatrix(pose).multiply(poseMatrix(selPose).invert());
-      const old = previews.get(name);   // a second move before the markers caught up
-      previews.set(name, { D: old ? D.clone().multiply(old.D) : D, pose: old ? old.pose : first.pose });
-    }
+    if (hold && hold.name === name) hold.answered = true;   // pose_info shows it from now
+    if (!r.success) { hold = null; throw new Error(r.status_message); }
     selPose = pose;
     showPose(pose);
-    say(`set ${name} to x ${pose.position.x.toFixed(3)} y ${pose.position.y.toFixed(3)} z ${pose.position.z.toFixed(3)}`);
+    say(`set ${name} to x ${pose.position.x.toFixed(3)} y ${pose.position.y.toFixed(3)} z ${pose.position.z.toFixed(3)} yaw ${quatToRpy(pose.orientation)[2].toFixed(3)}`);
     ctx.dirty();
   };
   applyBtn.onclick = () => {
@@ -256,6 +290,7 @@ export function attachSimEditor(ctx) {
       groups[groups.length - 1].dataset.name = m.name;
     }
     insertList.replaceChildren(...groups);
+    ctx.relayout();
   };
   insertBtn.onclick = () => {
     const open = insertList.style.display === 'none';
@@ -263,6 +298,7 @@ export function attachSimEditor(ctx) {
     insertList.style.flexWrap = 'wrap';
     insertBtn.textContent = open ? 'Insert ▾' : 'Insert ▸';
     if (open && !library) loadLibrary().catch(e => { insertList.textContent = e.message; });
+    ctx.relayout();   // the canvas takes what the list leaves
   };
   const place = async (p, x, y) => {
     const taken = new Set(names);
@@ -317,8 +353,10 @@ export function attachSimEditor(ctx) {
   let lastPick = null;  // the model under the last press (stats)
   let down = null;    // {x, y, drag: {name, start (world point), pose0, kind}}
   let dragD = null;   // the world-frame Matrix4 of the move being dragged
+  let lastDown = null;  // client pixels of the last press (stats)
   const onDown = ev => {
     if (ev.button !== 0) return;
+    lastDown = [ev.clientX, ev.clientY];
     down = { x: ev.clientX, y: ev.clientY, drag: null };
     if (placing || mode === 'select' || !selected || !selPose) return;
     const hit = pick(ev);
@@ -355,7 +393,8 @@ export function attachSimEditor(ctx) {
         const target = poseMatrix(d.pose0).premultiply(D);
         const pos = new THREE.Vector3(), q = new THREE.Quaternion(), s = new THREE.Vector3();
         target.decompose(pos, q, s);
-        setPose(d.name, { position: { x: pos.x, y: pos.y, z: pos.z }, orientation: { x: q.x, y: q.y, z: q.z, w: q.w } }, D)
+        hold = { name: d.name, D, answered: false };
+        setPose(d.name, { position: { x: pos.x, y: pos.y, z: pos.z }, orientation: { x: q.x, y: q.y, z: q.z, w: q.w } })
           .catch(e => { fail('set_model_state', e); ctx.dirty(); });
         return;
       }
@@ -408,11 +447,12 @@ export function attachSimEditor(ctx) {
     return [r.left + (c.x + 1) / 2 * r.width, r.top + (1 - c.y) / 2 * r.height];
   };
   return {
-    // after the view placed the markers by TF: moves not yet in the markers, deleted models
-    // hidden, the selection box
+    // after the view placed the markers by TF: each model's markers at its pose now, the move
+    // being dragged, deleted models hidden, the selection box
     afterPlace() {
       const m = ctx.markers();
       highlight.visible = false;
+      selCentre = null;
       if (!m) return;
       const W = worldToFixed(), Winv = W.clone().invert();
       const fresh = performance.now() - namesAt < 5000;
@@ -421,42 +461,37 @@ export function attachSimEditor(ctx) {
         if (!e.ns || !e.ns.startsWith(MODEL_NS)) continue;
         const name = e.ns.slice(MODEL_NS.length);
         if (fresh && !names.includes(name)) { e.obj.visible = false; continue; }
-        const pv = previews.get(name);
-        let D = pv ? pv.D : null;
-        if (dragD && down && down.drag && down.drag.name === name) D = D ? dragD.clone().multiply(D) : dragD;
+        let D = null;
+        const now = poses.get(name);
+        if (now) {
+          if (!e.ref) e.ref = poseAtTime(name, secs(e.stamp));
+          if (e.ref && !samePose(now, e.ref)) D = poseMatrix(now).multiply(poseMatrix(e.ref).invert());
+        }
+        const extra = dragD && down && down.drag && down.drag.name === name ? dragD : hold && hold.name === name ? hold.D : null;
+        if (extra) D = D ? extra.clone().multiply(D) : extra;
         if (D && e.obj.visible) {
           e.obj.matrix.premultiply(W.clone().multiply(D).multiply(Winv));
           e.obj.matrixWorldNeedsUpdate = true;
         }
         if (name === selected && e.obj.visible) { e.obj.updateMatrixWorld(true); box.expandByObject(e.obj); }
       }
-      selCentre = null;
       if (!box.isEmpty()) {
         highlight.box.copy(box);
         highlight.visible = true;
         selCentre = box.getCenter(new THREE.Vector3());
       }
     },
-    // a scene markers message arrived: a move it shows (the model's first marker elsewhere
-    // than when the move was set) needs no preview any more
-    onMarkers() {
-      const m = ctx.markers();
-      for (const [name, pv] of [...previews]) {
-        const cur = m && m.entries(MODEL_NS + name)[0];
-        if (!cur || !samePose(cur.pose, pv.pose)) previews.delete(name);
-      }
-      ctx.dirty();
-    },
+    onMarkers() { ctx.dirty(); },
     stats: () => ({
       simTime: stats ? secs(stats.sim_time) : null, iterations: stats ? stats.iterations : null,
       paused: stats ? stats.paused : null, rtf: stats ? stats.real_time_factor : null,
       stepSize: stats ? stats.max_step_size : null, lastStep, models: names.slice(), selected,
-      selPose, selectedAt: selectedAt(), lastPick, previews: [...previews.keys()], placing: placing ? placing.base : null, mode,
+      selPose, selCentre: selCentre ? selCentre.toArray() : null, selectedAt: selectedAt(), lastPick, lastDown, held: hold ? hold.name : null, poseLive: poseLive(), placing: placing ? placing.base : null, mode,
       drawn: (() => { const m = ctx.markers(); return m ? [...new Set(m.entries(null).filter(e => e.ns && e.ns.startsWith(MODEL_NS))
         .map(e => e.ns.slice(MODEL_NS.length)))] : []; })(), library: library ? library.length : null, saved, info: info.textContent,
     }),
     destroy: () => {
-      unsubStats(); clearInterval(poll); clearTimeout(refreshTimer);
+      unsubStats(); unsubPoses(); clearInterval(poll); clearTimeout(refreshTimer);
       ctx.holder.removeEventListener('pointerdown', onDown, true);
       ctx.holder.removeEventListener('pointermove', onMove);
       ctx.holder.removeEventListener('pointerup', onUp);

@@ -138,7 +138,7 @@ export default {
     const editor = attachSimEditor({
       ros, bar, holder, canvas: renderer.domElement, camera, controls, scene,
       markers: () => { const d = displays.get(SCENE); return d && d.inst; },
-      toFixed: frame => tf.lookup(frame, fixed), dirty: () => { dirty = true; },
+      toFixed: frame => tf.lookup(frame, fixed), dirty: () => { dirty = true; }, relayout: () => fit(),
     });
     fit();
 
