@@ -3,9 +3,9 @@
 student does PW4 / lab 4 in the browser: the Insert list is the simulator's model library,
 insert a library model and a box by clicking on the ground, move and turn the box by dragging
 it with the mouse, pause and step 100 steps (sim time advances by exactly 100 x max_step_size),
-move the table with the pose fields while paused (the view shows it there), save the world (a download) and check the file: the models at
-their moved poses, and sim_node loads it back to the same poses. Clients without the token /
-rosauth MAC get nothing."""
+move the table with the pose fields while paused (the view shows it there), save the world (a
+download) and check the file: the models at their moved poses, and sim_node loads it back to
+the same poses. Clients without the token / rosauth MAC get nothing; bad requests one line."""
 import os
 import sys
 import time
@@ -128,7 +128,8 @@ def test_insert_list_is_the_model_library(ed):
 
 def test_insert_a_library_model_and_a_box(ed):
     s = ed
-    s.js("[...document.querySelectorAll('.sim-item')].find(b => b.dataset.name === arguments[0]).click()", LIBRARY_MODEL)
+    s.js("[...document.querySelectorAll('.sim-item')].find(b => b.dataset.name === arguments[0]).click()",
+         LIBRARY_MODEL)
     assert s.sim()['placing'] == LIBRARY_MODEL
     s.click_canvas(-200, 60)
     s.wait(lambda: LIBRARY_MODEL in s.sim()['models'], '%s inserted' % LIBRARY_MODEL)
@@ -197,6 +198,7 @@ def test_pause_and_step_100(ed):
     s.wait(lambda: (lambda a: time.sleep(0.5) or (a if a == s.sim()['simTime'] else None))(s.sim()['simTime']),
            'sim time to stand still while paused')
     step = s.sim()['stepSize']
+
     def steps(n):
         before = s.sim()['lastStep']
         s.type_into('.sim-steps', str(n))
@@ -229,7 +231,8 @@ def test_set_the_table_pose_in_the_fields(ed):
     assert abs(yaw - 0.7) < 1e-6, p
     # paused, the view shows it there (the scene markers moved by /gazebo/pose_info)
     assert s.sim()['paused'] is True
-    s.wait(lambda: s.sim()['selCentre'] and np.hypot(s.sim()['selCentre'][0] + 1.5, s.sim()['selCentre'][1] - 2.25) < 0.2,
+    s.wait(lambda: s.sim()['selCentre'] and
+           np.hypot(s.sim()['selCentre'][0] + 1.5, s.sim()['selCentre'][1] - 2.25) < 0.2,
            'the table drawn at -1.5, 2.25 while paused')
     s.shot('.view3d-canvas', 'table_moved_paused')
 
@@ -349,4 +352,5 @@ def test_clients_without_token_or_mac_get_nothing(ed):
         '\n' not in answers['type']['values'].strip() and 'steps' in answers['type']['values'], answers
     xml = answers['xml']
     assert xml['result'] is True and xml['values']['success'] is False, xml
-    assert '\n' not in xml['values']['status_message'] and 'spawn_sdf_model(bad)' in xml['values']['status_message'], xml
+    said = xml['values']['status_message']
+    assert '\n' not in said and 'spawn_sdf_model(bad)' in said, xml
