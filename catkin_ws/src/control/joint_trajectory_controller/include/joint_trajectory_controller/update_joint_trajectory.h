@@ -214,7 +214,6 @@ SegmentsPerJoint<Segment> updateJointTrajectory(const trajectory_msgs::JointTraj
                                                 const UpdateJointTrajectoryOptions<Segment>& options,
                                                 TrajectoryError& error)
 {
-  typedef typename Segment::State State;
   const std::vector<std::string>& joint_names = *options.joint_names;
   const SegmentsPerJoint<Segment>& current = *options.current_trajectory;
   const std::size_t n_joints = joint_names.size();
