@@ -354,3 +354,23 @@ def test_clients_without_token_or_mac_get_nothing(ed):
     assert xml['result'] is True and xml['values']['success'] is False, xml
     said = xml['values']['status_message']
     assert '\n' not in said and 'spawn_sdf_model(bad)' in said, xml
+
+
+def test_editor_helpers(ed):
+    """simedit.js' pure helpers, imported by the page: Gazebo's names of inserted models, the
+    bottom bar's time format, roll-pitch-yaw, a bad shape's one-line error."""
+    r = ed.driver.execute_async_script(
+        "const done = arguments[arguments.length - 1];"
+        "import('./panels/simedit.js').then(m => {"
+        " let bad = null; try { m.shapeSdf('cone', 'c'); } catch (e) { bad = e.message; }"
+        " const q = m.rpyToQuat(0.1, -0.2, 0.3);"
+        " done({u0: m.uniqueName('unit_box', new Set(['ground_plane'])),"
+        "  u2: m.uniqueName('unit_box', new Set(['unit_box', 'unit_box_0', 'unit_box_1'])),"
+        "  t: m.formatTime(90061.5), t0: m.formatTime(0.0015), rpy: m.quatToRpy(q), bad,"
+        "  inc: m.includeSdf('model://table')}); }, e => done(String(e)));")
+    assert isinstance(r, dict), r
+    assert r['u0'] == 'unit_box' and r['u2'] == 'unit_box_2'
+    assert r['t'] == '01 01:01:01.500' and r['t0'] == '00 00:00:00.002'
+    assert np.allclose(r['rpy'], [0.1, -0.2, 0.3], atol=1e-9)
+    assert r['bad'] == 'unknown shape "cone" (box, sphere, cylinder)'
+    assert r['inc'] == '<sdf version="1.6"><include><uri>model://table</uri></include></sdf>'
