@@ -143,3 +143,19 @@ def load_table(lab, fields, check_row, path=None):
         raise GradeError('%s: no row for digit%s %s (a %s table needs all ten)' % (
             where, 's' if len(missing) > 1 else '', ', '.join(map(str, missing)), lab))
     return table
+
+
+class VariantTable:
+    """A lab's variant table: its rows are mappings of `fields` that `check_row(row)` (None or
+    what is wrong) accepts."""
+
+    def __init__(self, lab, fields, check_row):
+        self.lab, self.fields, self.check_row = lab, fields, check_row
+
+    def load(self, path=None):
+        """{digit: row}: `path`, else $GRADING_VARIANTS, else the textbook's (load_table)."""
+        return load_table(self.lab, self.fields, self.check_row, path)
+
+    def row(self, isu):
+        """The row of the ISU's variant (its last digit)."""
+        return self.load()[variant_digit(isu)]

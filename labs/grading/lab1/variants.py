@@ -1,5 +1,5 @@
 """Lab 1's variant (table 9.1): the computing node and the operation of the ISU's last digit."""
-from grading.common import load_table, variant_digit
+from grading.common import VariantTable
 
 FIELDS = ('operation', 'compute')
 OPERATIONS = ('+', '-', '*', '/')
@@ -16,27 +16,19 @@ def check_row(row):
     return None
 
 
-def load(path=None):
-    """{digit: row} of lab1's variant table (grading.common.load_table)."""
-    return load_table('lab1', FIELDS, check_row, path)
-
-
-def row_of(isu):
-    """The table's row of the ISU's variant (its last digit)."""
-    return load()[variant_digit(isu)]
-
+TABLE = VariantTable('lab1', FIELDS, check_row)
 
 
 def operations(isu):
     """The operations that pass for the ISU's variant, the printed one first: a row whose scan
     can be read two ways lists both (digit 5: printed "+", read "*" by the rows around it)."""
-    op = row_of(isu)['operation']
+    op = TABLE.row(isu)['operation']
     return tuple(op) if isinstance(op, list) else (op,)
 
 
 def roles(isu):
     """(computing node, (first sender, second sender), printed operation) for the ISU's variant."""
-    v = row_of(isu)
+    v = TABLE.row(isu)
     comp = v['compute']
     senders = tuple(n for n in NODES if n != comp)
     return comp, senders, operations(isu)[0]

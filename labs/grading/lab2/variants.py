@@ -1,5 +1,5 @@
 """Lab 2's variant (table 10.1): the points of the ISU's last digit; the ISU's namespaces."""
-from grading.common import load_table, numbers, variant_digit
+from grading.common import VariantTable, numbers
 
 FIELDS = ('points',)
 TURTLE_WORLD = 11.088889   # m, the side of turtlesim's field
@@ -16,19 +16,12 @@ def check_row(row):
     return None
 
 
-def load(path=None):
-    """{digit: row} of lab2's variant table (grading.common.load_table)."""
-    return load_table('lab2', FIELDS, check_row, path)
-
-
-def row_of(isu):
-    """The table's row of the ISU's variant (its last digit)."""
-    return load()[variant_digit(isu)]
+TABLE = VariantTable('lab2', FIELDS, check_row)
 
 
 def printed_points(isu):
     """The variant's row as the table prints it, repeated cells included."""
-    return [tuple(float(c) for c in p) for p in row_of(isu)['points']]
+    return [tuple(float(c) for c in p) for p in TABLE.row(isu)['points']]
 
 
 def points(isu):

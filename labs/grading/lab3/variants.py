@@ -1,5 +1,5 @@
 """Lab 3's variant (table 11.1): links, manipulator joints, wheels and body of the ISU's last digit."""
-from grading.common import check_body, load_table, variant_digit
+from grading.common import VariantTable, check_body
 
 FIELDS = ('links', 'arm', 'wheels', 'body')
 
@@ -15,17 +15,10 @@ def check_row(row):
     return check_body(row)
 
 
-def load(path=None):
-    """{digit: row} of lab3's variant table (grading.common.load_table)."""
-    return load_table('lab3', FIELDS, check_row, path)
-
-
-def row_of(isu):
-    """The table's row of the ISU's variant (its last digit)."""
-    return load()[variant_digit(isu)]
+TABLE = VariantTable('lab3', FIELDS, check_row)
 
 
 def spec(isu):
-    v = row_of(isu)
+    v = TABLE.row(isu)
     return {'links': int(v['links']), 'arm': str(v['arm']), 'wheels': str(v['wheels']),
             'body': [float(x) for x in v['body']]}

@@ -1,5 +1,5 @@
 """Lab 4's variant (chapter 12's table): lidar range, camera resolution, body of the ISU's last digit."""
-from grading.common import check_body, load_table, numbers, variant_digit
+from grading.common import VariantTable, check_body, numbers
 
 FIELDS = ('lidar', 'camera', 'body')
 
@@ -17,17 +17,10 @@ def check_row(row):
     return None
 
 
-def load(path=None):
-    """{digit: row} of lab4's variant table (grading.common.load_table)."""
-    return load_table('lab4', FIELDS, check_row, path)
-
-
-def row_of(isu):
-    """The table's row of the ISU's variant (its last digit)."""
-    return load()[variant_digit(isu)]
+TABLE = VariantTable('lab4', FIELDS, check_row)
 
 
 def spec(isu):
-    v = row_of(isu)
+    v = TABLE.row(isu)
     return {'lidar': [float(x) for x in v['lidar']], 'camera': [int(x) for x in v['camera']],
             'body': [float(x) for x in v['body']]}
