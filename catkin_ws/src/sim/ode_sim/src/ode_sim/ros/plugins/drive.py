@@ -177,7 +177,7 @@ class DiffDrive(_Drive):
         self.odom_pub = None
         if self.publish_tf:
             self.odom_pub = self.ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
-                                                SENSOR_QUEUE)
+                                                  SENSOR_QUEUE)
 
     def _wheel(self, tag, default):
         name = self.param(tag, default)
@@ -332,7 +332,7 @@ class SkidSteerDrive(_Drive):
         from nav_msgs.msg import Odometry
         self._subscribe(self.command_topic)
         self.odom_pub = self.ctx.io.publisher(self.topic(self.odometry_topic), Odometry,
-                                                SENSOR_QUEUE)
+                                              SENSOR_QUEUE)
 
     def next_update(self):
         return self._next_due()

@@ -91,7 +91,7 @@ class GazeboRosImu(_Imu):
             from std_srvs.srv import Empty, EmptyResponse
             self.pub = self.ctx.io.publisher(self.topic(self.topic_name), Imu, SENSOR_QUEUE)
             self.srv = self.ctx.io.service(self.topic(self.service_name), Empty,
-                               lambda req: EmptyResponse())
+                                           lambda req: EmptyResponse())
 
     def measure(self):
         q, omega, accel = self.frame_state()
