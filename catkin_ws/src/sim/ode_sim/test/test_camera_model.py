@@ -73,6 +73,9 @@ def test_noise_is_seeded_and_clipped():
     b = CameraModel(sensor(noise_stddev=0.05), rng=np.random.default_rng(3)).image_bytes(rgb)
     assert a == b and a != rgb.tobytes()
     assert CameraModel(sensor()).image_bytes(rgb) == rgb.tobytes()
+    # without a generator given: seeded, the same frames run after run
+    c, d = CameraModel(sensor(noise_stddev=0.05)), CameraModel(sensor(noise_stddev=0.05))
+    assert c.image_bytes(rgb) == d.image_bytes(rgb) != rgb.tobytes()
 
 
 def test_depth_cut_and_cloud():

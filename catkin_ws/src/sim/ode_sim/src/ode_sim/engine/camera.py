@@ -4,8 +4,9 @@ messages, ode_sim.ros.plugins.camera wires them to topics).
 
 `CameraModel(sensor)` holds a <sensor type="camera"> (or "depth", ...) description: image size,
 horizontal field of view, clip planes, <image><format> and Gaussian pixel noise; bad values
-raise ModelError naming the sensor. `.image_bytes(rgb)` turns a rendered (h, w, 3) uint8 RGB
-frame into the bytes of the published image (noise first, then the encoding).
+raise ModelError naming the sensor; the noise is drawn from a generator seeded with 0 unless
+one is given. `.image_bytes(rgb)` turns a rendered (h, w, 3) uint8 RGB frame into the bytes of
+the published image (noise first, then the encoding).
 
 Pinhole: f = width / (2 tan(hfov / 2)) pixels (`focal_length`); `camera_info_matrix` gives K
 and P as gazebo_ros_camera_utils publishes them (cx, cy default to (width + 1) / 2,
@@ -179,7 +180,8 @@ class CameraModel:
         self.encoding, self.channels, self.bytes, self.known_format = encoding_of(self.format)
         self.noise_mean = _num(sp, 'noise_mean', 0.0) or 0.0
         self.noise_stddev = _num(sp, 'noise_stddev', 0.0) or 0.0
-        self.rng = rng if rng is not None else np.random.default_rng()
+        # seeded as the other sensors' noise (laser, imu, gps): runs repeat exactly
+        self.rng = rng if rng is not None else np.random.default_rng(0)
 
     @property
     def focal(self):
