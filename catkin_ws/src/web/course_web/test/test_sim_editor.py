@@ -140,6 +140,7 @@ def test_insert_a_library_model_and_a_box(ed):
     s.wait(lambda: {LIBRARY_MODEL, 'unit_box'} <= set(s.sim()['drawn']),
            'both models drawn in the view (scene markers)')
     table, box = s.model_state(LIBRARY_MODEL), s.model_state('unit_box')
+    s.inserted_table = table
     # placed where the clicks met the ground: left and right of the view's centre
     assert abs(box['position']['z'] - 0.5) < 0.05, box
     assert np.hypot(table['position']['x'] - box['position']['x'],
@@ -293,6 +294,14 @@ def test_delete_and_bad_input_give_one_line(ed):
     s.click('.sim-delete')
     s.wait(lambda: 'unit_box' not in s.sim()['models'] and 'unit_box' not in s.sim()['drawn'],
            'unit_box deleted (list and view)')
+    # Edit -> Reset Model Poses: the table back where it was inserted; Reset World: time too
+    s.click('.sim-reset-poses')
+    s.wait(lambda: s.sim()['info'] == 'model poses reset', 'reset_world answered')
+    back, was = s.model_state(LIBRARY_MODEL), s.inserted_table
+    assert np.allclose([back['position'][k] for k in 'xy'], [was['position'][k] for k in 'xy'], atol=1e-3), (back, was)
+    t = s.sim()['simTime']
+    s.click('.sim-reset-world')
+    s.wait(lambda: s.sim()['info'] == 'world reset' and s.sim()['simTime'] < t - 0.5, 'sim time to start over')
 
 
 def test_clients_without_token_or_mac_get_nothing(ed):

@@ -105,6 +105,13 @@ export function attachSimEditor(ctx) {
       .then(() => { pauseBtn.textContent = pause ? 'Play' : 'Pause'; say(pause ? 'paused' : 'running'); refreshSoon(); })
       .catch(e => fail(pause ? 'pause_physics' : 'unpause_physics', e));
   };
+  // Edit → Reset Model Poses (/gazebo/reset_world) and Reset World (/gazebo/reset_simulation)
+  const resetPoses = el('button', { className: 'sim-reset-poses', title: 'Edit → Reset Model Poses' }, 'Reset poses');
+  const resetWorld = el('button', { className: 'sim-reset-world', title: 'Edit → Reset World (poses and time)' }, 'Reset world');
+  for (const [b, srv, done] of [[resetPoses, 'reset_world', 'model poses reset'], [resetWorld, 'reset_simulation', 'world reset']]) {
+    b.onclick = () => callService(ros, `${G}/${srv}`, 'std_srvs/Empty', {})
+      .then(() => { say(done); refreshSoon(); }).catch(e => fail(srv, e));
+  }
   stepBtn.onclick = () => {
     const steps = Math.floor(Number(stepN.value));
     if (!(steps >= 1)) { say(`steps: "${stepN.value}" is not a whole number of at least 1`); return; }
@@ -142,7 +149,7 @@ export function attachSimEditor(ctx) {
   const insertList = el('div', { className: 'sim-insert', style: 'display:none;max-height:150px;overflow:auto' });
 
   ctx.bar.append(
-    el('div', { className: 'row sim-bar' }, pauseBtn, stepBtn, stepN, statsText),
+    el('div', { className: 'row sim-bar' }, pauseBtn, stepBtn, stepN, resetPoses, resetWorld, statsText),
     el('div', { className: 'row sim-tools' }, ...Object.values(modeBtns), ...shapeBtns, insertBtn, deleteBtn,
       'model', modelSel, ...['x', 'y', 'z', 'roll', 'pitch', 'yaw'].flatMap(k => [k === 'roll' ? 'R' : k === 'pitch' ? 'P' : k === 'yaw' ? 'Y' : k, poseIn[k]]),
       applyBtn, fileName, saveBtn),
