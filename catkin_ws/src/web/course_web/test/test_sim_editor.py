@@ -291,7 +291,15 @@ def test_delete_and_bad_input_give_one_line(ed):
     s.js("const sel = document.querySelector('.sim-model'); sel.value = 'unit_box';"
          " sel.dispatchEvent(new Event('change'))")
     s.wait(lambda: s.sim()['selected'] == 'unit_box', 'unit_box selected')
-    s.click('.sim-delete')
+    # Gazebo's keys in the view: T, R, Esc; Delete deletes the selection
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+    s.js("document.querySelector('.view3d-canvas').parentElement.focus()")   # the view, not a field
+    for key, mode in (('t', 'translate'), ('r', 'rotate'), (Keys.ESCAPE, 'select')):
+        ActionChains(s.driver).send_keys(key).perform()
+        s.wait(lambda: s.sim()['mode'] == mode, '%s mode from the keyboard' % mode, timeout=10)
+    assert s.sim()['selected'] == 'unit_box'
+    ActionChains(s.driver).send_keys(Keys.DELETE).perform()
     s.wait(lambda: 'unit_box' not in s.sim()['models'] and 'unit_box' not in s.sim()['drawn'],
            'unit_box deleted (list and view)')
     # Edit -> Reset Model Poses: the table back where it was inserted; Reset World: time too

@@ -271,9 +271,13 @@ export function attachSimEditor(ctx) {
     }).catch(e => fail('delete_model', e));
   };
   deleteBtn.onclick = deleteSelected;
+  // Gazebo's keys in the view: Esc select mode (and no placing), T translate, R rotate, Delete
   const onKey = ev => {
-    if (ev.key === 'Escape') { placing = null; say(''); }
-    if (ev.key === 'Delete' && selected && !['INPUT', 'SELECT'].includes(document.activeElement.tagName)) deleteSelected();
+    if (['INPUT', 'SELECT'].includes(document.activeElement.tagName)) return;
+    if (ev.key === 'Escape') { placing = null; setMode('select'); say(''); }
+    else if (ev.key === 't' || ev.key === 'T') setMode('translate');
+    else if (ev.key === 'r' || ev.key === 'R') setMode('rotate');
+    else if (ev.key === 'Delete' && selected) deleteSelected();
   };
   ctx.holder.tabIndex = 0;
   ctx.holder.addEventListener('keydown', onKey);
