@@ -8,6 +8,7 @@ import time
 import numpy as np
 from PyQt5 import QtCore, QtGui, QtWidgets
 
+from ode_sim.engine import gl
 from ode_sim.engine.raycast import RayCaster
 from ode_sim.engine.render import Renderer
 from ode_sim_gui.orbit import OrbitCamera
@@ -17,6 +18,69 @@ CLICK_PIXELS = 4
 FAST_FRAME = 0.040          # s: a full frame slower than this -> half resolution while moving
 INTERACTIVE_SCALE = 0.5
 STILL_MS = 250              # the full-resolution frame this long after the last change
+
+
+class ViewRenderer(Renderer):
+    """The window's renderer: the cameras' Renderer (same shaders, same materials and lights),
+    with what only the window needs cheaper. The image is read back as RGBX into one buffer
+    kept for the renderer's life (a QImage is laid over it: no copies; GL reads RGBA without
+    repacking); opaque shapes are drawn nearest first and ground planes last, so that llvmpipe's
+    depth test rejects hidden pixels before shading them (a camera's draw order is kept as it
+    is); static shapes' (the grid's) model matrices are computed once per scene."""
+
+    def __init__(self, width, height, hfov, near=0.05, far=500.0):
+        super().__init__(width, height, hfov, near=near, far=far, depth=False)
+        self.rgbx = np.zeros((self.height, self.width, 4), dtype=np.uint8)
+        self._static = {}
+
+    def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1),
+                  background=(0.7, 0.7, 0.7, 1)):
+        super().set_scene(shapes, lights=lights, ambient=ambient, background=background)
+        self._static = {id(s): _model_bytes(s) for s, *_ in self._shapes if s.static}
+
+    def render_rgbx(self, camera_pose):
+        """Draw a frame into `self.rgbx` ((height, width, 4) uint8, row 0 at the top, the 4th
+        byte 255) and return it."""
+        cam = camera_pose.matrix()
+        eye = cam[:3, 3]
+        viewproj = (self._proj @ np.linalg.inv(cam)).T.astype('f4').tobytes()
+        opaque, blended = [], []
+        for s, vao, u, tex, textured in self._shapes:
+            model = self._static.get(id(s))
+            if model is None:
+                pose = s.world_pose()
+                model = _matrix_bytes(pose)
+                far = float(np.dot(pose.p - eye, pose.p - eye))
+            else:
+                far = None
+            item = (model, vao, u, tex, textured)
+            if u[-1] < 1.0:
+                blended.append(item)
+            else:
+                if far is None:
+                    p = s.world_pose().p
+                    far = float(np.dot(p - eye, p - eye))
+                if s.geometry.kind == 'plane':
+                    far = math.inf
+                opaque.append((far, len(opaque), item))
+        opaque.sort(key=lambda t: (t[0], t[1]))
+        models = [it for _, _, it in opaque] + blended
+        gl.run(self._gl_frame, viewproj, tuple(float(v) for v in eye), models)
+        if blended:
+            self.rgbx[:, :, 3] = 255        # blending lowered alpha; Qt's RGBX wants 255
+        return self.rgbx
+
+    def _gl_frame(self, viewproj, eye, models):
+        self._gl_draw(viewproj, eye, models)
+        self._fbo.read_into(self.rgbx, components=4, alignment=1)
+
+
+def _matrix_bytes(pose):
+    return pose.matrix().T.astype('f4').tobytes()
+
+
+def _model_bytes(shape):
+    return _matrix_bytes(shape.world_pose())
 
 
 class View3D(QtWidgets.QWidget):
@@ -36,6 +100,7 @@ class View3D(QtWidgets.QWidget):
         self._renderers = {}           # scale -> Renderer
         self._dirty = set()
         self._image = None
+        self._image_buffer = None
         self._want_full = False
         self.full_frame_cost = 0.0
         self._full_timer = QtCore.QTimer(self)
@@ -63,7 +128,7 @@ class View3D(QtWidgets.QWidget):
         if r is None or (r.width, r.height) != (w, h):
             if r is not None:
                 r.release()
-            r = self._renderers[scale] = Renderer(w, h, HFOV, near=0.05, far=500.0)
+            r = self._renderers[scale] = ViewRenderer(w, h, HFOV, near=0.05, far=500.0)
             self._dirty.add(scale)
         if scale in self._dirty:
             r.set_scene(self.scene.shapes(), lights=self.scene.lights(),
@@ -76,10 +141,12 @@ class View3D(QtWidgets.QWidget):
         (the same camera, the image is stretched over the view when painted)."""
         t0 = time.perf_counter()
         self.camera.resize(max(self.width(), 1), max(self.height(), 1))
-        rgb, _ = self._renderer_for(scale).render(self.camera.pose())
-        self._rgb = rgb
-        h, w, _ = rgb.shape
-        self._image = QtGui.QImage(rgb.data, w, h, 3 * w, QtGui.QImage.Format_RGB888)
+        rgbx = self._renderer_for(scale).render_rgbx(self.camera.pose())
+        h, w, _ = rgbx.shape
+        if self._image is None or self._image_buffer is not rgbx:
+            # the QImage lies over the renderer's buffer: each frame is read back into it
+            self._image = QtGui.QImage(rgbx.data, w, h, 4 * w, QtGui.QImage.Format_RGBX8888)
+            self._image_buffer = rgbx
         self.frames += 1
         dt = time.perf_counter() - t0
         self.frame_times.append(dt)
@@ -104,7 +171,8 @@ class View3D(QtWidgets.QWidget):
         self.update()
 
     def last_rgb(self):
-        return getattr(self, '_rgb', None)
+        """The last frame drawn, (height, width, 3) uint8 (a view of the renderer's buffer)."""
+        return self._image_buffer[:, :, :3] if self._image_buffer is not None else None
 
     # -------------------------------------------------------------- mouse
     def mousePressEvent(self, e):

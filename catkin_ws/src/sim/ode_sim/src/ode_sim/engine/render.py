@@ -207,6 +207,13 @@ class Renderer:
         return rgb, (self._linear_depth(zbuf) if self.depth else None)
 
     def _gl_render(self, viewproj, eye, models, rgb, zbuf):
+        self._gl_draw(viewproj, eye, models)
+        self._fbo.read_into(rgb, components=3, alignment=1)
+        if zbuf is not None:
+            self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
+
+    def _gl_draw(self, viewproj, eye, models):
+        """Draw `models` (render()'s list) into this renderer's framebuffer (GL thread)."""
         ctx = gl.context()
         self._fbo.use()
         ctx.enable_only(ctx.DEPTH_TEST | ctx.CULL_FACE)
@@ -247,9 +254,6 @@ class Renderer:
             vao.render()
         if blending:
             ctx.disable(ctx.BLEND)
-        self._fbo.read_into(rgb, components=3, alignment=1)
-        if zbuf is not None:
-            self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
 
     def _linear_depth(self, zbuf):
         """Window depth z in [0, 1] -> distance along the optical axis, n f / (f - z (f - n)),
