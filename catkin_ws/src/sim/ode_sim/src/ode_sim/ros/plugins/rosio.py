@@ -115,6 +115,64 @@ class _NoYieldWrite:
         return True
 
 
+class DirectPublisher(rospy.Publisher):
+    """A rospy.Publisher for small, frequent messages (/clock) whose publish() writes the
+    message to each subscriber's socket itself (one non-blocking send) instead of waking a
+    sender thread per subscriber: at 1.0x real time /clock goes out every physics step to
+    every node of the graph, and a thread switch (with the GIL) per message and subscriber cost
+    more than the messages. A subscriber whose socket buffer is full (a frozen process) loses
+    that message, as a full queue drops one; a send that takes only part of a message leaves
+    the rest, and every later message, to that subscriber's sender thread (order and framing
+    kept). Connections it cannot use this way keep NoYieldPublisher's queued write."""
+
+    def publish(self, *args, **kwds):
+        impl = self.impl
+        if impl is not None:
+            for c in impl.connections:
+                if 'write_data' not in c.__dict__ and _queued(c):
+                    c.write_data = _DirectWrite(c) if _direct(c) else _NoYieldWrite(c)
+        return super().publish(*args, **kwds)
+
+
+def _direct(c):
+    t = getattr(c, '_connection', None)
+    return all(hasattr(t, a) for a in ('socket', 'done', 'close'))
+
+
+class _DirectWrite:
+    """write_data of a QueuedConnection that sends in the publishing thread (DirectPublisher)."""
+    __slots__ = ('c', 'queued')
+
+    def __init__(self, c):
+        self.c = c
+        self.queued = None          # _NoYieldWrite after a partial send
+
+    def __call__(self, data):
+        import socket
+        from rospy.exceptions import TransportInitError, TransportTerminated
+        if self.queued is not None:
+            return self.queued(data)
+        t = self.c._connection
+        if t.done:
+            raise TransportTerminated('connection closed')
+        sock = t.socket
+        if sock is None:
+            raise TransportInitError('TCPROS transport was not successfully initialized')
+        try:
+            n = sock.send(data, socket.MSG_DONTWAIT)
+        except (BlockingIOError, InterruptedError):
+            return True             # the subscriber reads nothing: this message is dropped
+        except OSError as e:
+            t.close()
+            raise TransportTerminated(str(e))
+        t.stat_bytes += n
+        t.stat_num_msg += 1
+        if n < len(data):
+            self.queued = _NoYieldWrite(self.c)
+            return self.queued(data[n:])
+        return True
+
+
 class WallClock:
     """The wall clock for the few waits that are about wall time (the lockstep timeout)."""
 
