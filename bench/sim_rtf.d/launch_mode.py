@@ -284,11 +284,11 @@ def report(name, m, bare, bare_cpu):
     cpu_rtf = sim / max(total_cpu, 1e-9)
     p = 'sim_rtf --launch %s:' % name
     if m.get('paced'):
+        per_sim = total_cpu / max(sim, 1e-9)
         lines = ['%s roslaunch %s, paced as shipped (world rate %g): %.3fx real time over %.1f '
                  'wall s; the whole launch %.3f CPU s per simulated s (%.2f of the 2 cores at '
                  '1.0x real time)' % (p, ' '.join(cfg['args']), m['shipped_rate'], rtf, wall,
-                                       total_cpu / max(sim, 1e-9),
-                                       total_cpu / max(sim, 1e-9) / 2.0)]
+                                      per_sim, per_sim / 2.0)]
     else:
         lines = ['%s roslaunch %s (world rate %g set to 0 through /gazebo/set_physics_properties): '
                  '%.2fx real time over %.1f wall s = %.2f of the bare C loop (%.1fx, same world and '
@@ -371,7 +371,6 @@ def run(names, seconds, warmup, bare_steps, build_bare_c, bare_c_loop, paced=Fal
             print(line, flush=True)
         out.append((name, m, bare, bare_cpu))
     return out
-
 
 
 def child_main(argv):

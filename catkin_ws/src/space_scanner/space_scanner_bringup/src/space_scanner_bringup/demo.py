@@ -14,7 +14,6 @@ Headless unless DISPLAY is set (then RViz shows each phase); with --web (make de
 course web view (course_web) shows the robot, scans, map and plans in a browser."""
 import argparse
 import json
-import math
 import os
 import signal
 import subprocess
@@ -125,7 +124,6 @@ def explore(out, env, display, sim_budget, say):
             'rviz:=%s' % ('true' if display else 'false')]
     launch = Proc(args, env=env, log=log)
     try:
-        import rospy
         wait_for(lambda: sim_now() > 0, 300, 'the simulation clock (see %s)' % log)
         rec = Recorder()
         meter = pace.PhaseMeter(sim_now)
@@ -291,7 +289,8 @@ def report(out, wall_s, elapsed, finished, truth1, quality, slam_ate, amcl_ate, 
     rows = [
         ('exploration', '%.0f s sim, %.1f m driven, %s' % (
             elapsed, summary['explored_path_m'], 'all frontiers done' if finished else 'budget ended')),
-        ('map: walls found', '%.1f %% of the wall cells the robot saw (within one cell)' % (100 * quality['walls_found'])),
+        ('map: walls found', '%.1f %% of the wall cells the robot saw (within one cell)'
+         % (100 * quality['walls_found'])),
         ('map: false occupied', '%.1f %% of the occupied cells' % (100 * quality['false_occupied'])),
         ('map: known floor', '%.1f m²' % quality['known_area']),
         ('SLAM ATE', 'RMS %.3f m, max %.3f m' % slam_ate),

@@ -101,6 +101,6 @@ def describe(name, f, top=4):
     simulated s (gazebo 0.25, move_base 0.12, ...)'."""
     busiest = ', '.join('%s %.2f' % (n, c / f['sim_s']) for n, c in f['top'][:top]
                         if f['sim_s'] > 0)
+    tail = ' (%s)' % busiest if busiest else ''
     return ('%s: %.2fx real time (%.0f s simulated in %.0f s of wall time), the stack %.2f CPU s '
-            'per simulated s%s' % (name, f['rtf'], f['sim_s'], f['wall_s'], f['cpu_per_sim_s'],
-                                    ' (%s)' % busiest if busiest else ''))
+            'per simulated s%s' % (name, f['rtf'], f['sim_s'], f['wall_s'], f['cpu_per_sim_s'], tail))
