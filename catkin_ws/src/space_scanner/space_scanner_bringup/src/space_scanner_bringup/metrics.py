@@ -77,4 +77,3 @@ def path_length(points):
     if len(pts) < 2:
         return 0.0
     return float(np.hypot(*np.diff(pts, axis=0).T).sum())
-
