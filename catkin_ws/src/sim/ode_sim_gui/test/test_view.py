@@ -151,3 +151,32 @@ def test_half_resolution_while_moving_then_full(view, qtbot):
     view.camera.orbit(20, 0)
     view.repaint()
     assert view.last_rgb().shape == (480, 640, 3)
+
+
+def test_moving_models_over_the_cached_still_scene(view):
+    """Camera still, the red box moving: after a full frame and one that caches the still
+    shapes, frames are drawn over the cache at full resolution even when full frames are slow,
+    and they are the frames an uncached renderer draws."""
+    view.full_frame_cost = 0.0
+    view.repaint()                                   # full frame: this camera
+    view.full_frame_cost = 1.0                       # as if a full frame took a second
+    r = view._renderers[1.0]
+    for i in range(4):
+        view.scene.set_poses({'red_box::link': Pose((0, -0.5 * i, 0.5))}, {})
+        view.repaint()
+        assert view.last_rgb().shape == (480, 640, 3)    # the camera is still: full size
+    assert r.cached
+    got = view.last_rgb().copy()
+    x, y = (int(round(c)) for c in view.camera.project((0, -1.5, 0.5)))
+    assert red(got[y - 3:y + 3, x - 3:x + 3]).all()      # where the box is now
+    x0, y0 = (int(round(c)) for c in view.camera.project((0, 0.45, 0.5)))
+    assert not red(got[y0 - 3:y0 + 3, x0 - 3:x0 + 3]).any()   # not where it was
+    view.scene_changed()                             # a new renderer state: no cache
+    view.render_now()
+    assert not r.cached
+    fresh = view.last_rgb().astype(int)
+    assert (np.abs(fresh - got).max(axis=2) > 0).sum() <= 20  # the same frame (z ties aside)
+    view.full_frame_cost = 1.0
+    view.camera.orbit(20, 0)
+    view.repaint()                                   # the camera moves: half resolution
+    assert view.last_rgb().shape == (240, 320, 3)

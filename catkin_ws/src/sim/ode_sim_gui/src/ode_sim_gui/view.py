@@ -22,21 +22,35 @@ STILL_MS = 250              # the full-resolution frame this long after the last
 
 class ViewRenderer(Renderer):
     """The window's renderer: the cameras' Renderer (same shaders, same materials and lights),
-    with what only the window needs cheaper. The image is read back as RGBX into one buffer
-    kept for the renderer's life (a QImage is laid over it: no copies; GL reads RGBA without
-    repacking); opaque shapes are drawn nearest first and ground planes last, so that llvmpipe's
-    depth test rejects hidden pixels before shading them (a camera's draw order is kept as it
-    is); static shapes' (the grid's) model matrices are computed once per scene."""
+    with what only the window needs cheaper.
+
+    * The image is read back as RGBX into one buffer kept for the renderer's life (a QImage is
+      laid over it: no copies; GL reads RGBA without repacking).
+    * Opaque shapes are drawn nearest first and ground planes last, so that llvmpipe's depth
+      test rejects hidden pixels before shading them (a camera's draw order is kept as it is).
+    * The still part of the scene is cached: a shape whose pose has changed since the scene was
+      set is "moving"; while the camera stays where it is, the other shapes are drawn once into
+      a second framebuffer (colour and depth), and each frame copies it and draws only the
+      moving shapes (and the transparent ones) over it. A camera that moves, or a shape that
+      starts moving, drops the cache (rebuilt on the next frame the camera is still).
+    * Static shapes' (the grid's) model matrices are computed once per scene.
+    """
 
     def __init__(self, width, height, hfov, near=0.05, far=500.0):
+        self._cache_fbo = self._cache_rbs = None
         super().__init__(width, height, hfov, near=near, far=far, depth=False)
         self.rgbx = np.zeros((self.height, self.width, 4), dtype=np.uint8)
         self._static = {}
+        self.cached = False             # the last frame was drawn over the cache
 
     def set_scene(self, shapes, lights=(), ambient=(0.4, 0.4, 0.4, 1),
                   background=(0.7, 0.7, 0.7, 1)):
         super().set_scene(shapes, lights=lights, ambient=ambient, background=background)
         self._static = {id(s): _model_bytes(s) for s, *_ in self._shapes if s.static}
+        self._last = {}                 # id(shape) -> model matrix bytes of the last frame
+        self._moving = set()            # id(shape) of shapes that moved since set_scene
+        self._cache_view = None         # viewproj the cache was drawn with, or None
+        self._prev_view = None
 
     def render_rgbx(self, camera_pose):
         """Draw a frame into `self.rgbx` ((height, width, 4) uint8, row 0 at the top, the 4th
@@ -44,35 +58,75 @@ class ViewRenderer(Renderer):
         cam = camera_pose.matrix()
         eye = cam[:3, 3]
         viewproj = (self._proj @ np.linalg.inv(cam)).T.astype('f4').tobytes()
-        opaque, blended = [], []
+        still, moving, blended = [], [], []
+        last, self._last = self._last, {}
         for s, vao, u, tex, textured in self._shapes:
-            model = self._static.get(id(s))
+            k = id(s)
+            model = self._static.get(k)
             if model is None:
                 pose = s.world_pose()
                 model = _matrix_bytes(pose)
-                far = float(np.dot(pose.p - eye, pose.p - eye))
+                self._last[k] = model
+                if k not in self._moving and k in last and last[k] != model:
+                    self._moving.add(k)
+                    self._cache_view = None
+                p = pose.p
             else:
-                far = None
+                p = s.world_pose().p if u[-1] >= 1.0 else None
             item = (model, vao, u, tex, textured)
             if u[-1] < 1.0:
                 blended.append(item)
-            else:
-                if far is None:
-                    p = s.world_pose().p
-                    far = float(np.dot(p - eye, p - eye))
-                if s.geometry.kind == 'plane':
-                    far = math.inf
-                opaque.append((far, len(opaque), item))
-        opaque.sort(key=lambda t: (t[0], t[1]))
-        models = [it for _, _, it in opaque] + blended
-        gl.run(self._gl_frame, viewproj, tuple(float(v) for v in eye), models)
+                continue
+            far = math.inf if s.geometry.kind == 'plane' else float(np.dot(p - eye, p - eye))
+            (moving if k in self._moving else still).append((far, len(still) + len(moving), item))
+        still.sort(key=lambda t: t[:2])
+        moving.sort(key=lambda t: t[:2])
+        still = [it for _, _, it in still]
+        over = [it for _, _, it in moving] + blended
+        if self._cache_view == viewproj:
+            mode = 'cached'
+        elif self._prev_view == viewproj:
+            mode = 'build'              # the camera is still: cache the still shapes
+        else:
+            mode = 'full'
+        self._prev_view = viewproj
+        gl.run(self._gl_frame, viewproj, tuple(float(v) for v in eye), still, over, mode)
+        if mode == 'build':
+            self._cache_view = viewproj
+        elif mode == 'full':
+            self._cache_view = None
+        self.cached = mode == 'cached'
         if blended:
             self.rgbx[:, :, 3] = 255        # blending lowered alpha; Qt's RGBX wants 255
         return self.rgbx
 
-    def _gl_frame(self, viewproj, eye, models):
-        self._gl_draw(viewproj, eye, models)
+    def _gl_frame(self, viewproj, eye, still, over, mode):
+        ctx = gl.context()
+        if mode == 'full':
+            self._gl_draw(viewproj, eye, still + over)
+        else:
+            if mode == 'build':
+                if self._cache_fbo is None:
+                    rbs = (ctx.renderbuffer((self.width, self.height), components=4),
+                           ctx.depth_renderbuffer((self.width, self.height)))
+                    self._cache_fbo = ctx.framebuffer(color_attachments=[rbs[0]],
+                                                      depth_attachment=rbs[1])
+                    self._cache_rbs = rbs
+                main, self._fbo = self._fbo, self._cache_fbo
+                try:
+                    self._gl_draw(viewproj, eye, still)
+                finally:
+                    self._fbo = main
+            ctx.copy_framebuffer(self._fbo, self._cache_fbo)
+            self._gl_draw(viewproj, eye, over, clear=False)
         self._fbo.read_into(self.rgbx, components=4, alignment=1)
+
+    def _gl_release(self):
+        super()._gl_release()
+        for obj in [self._cache_fbo] + list(self._cache_rbs or ()):
+            if obj is not None:
+                obj.release()
+        self._cache_fbo = self._cache_rbs = None
 
 
 def _matrix_bytes(pose):
@@ -102,6 +156,7 @@ class View3D(QtWidgets.QWidget):
         self._image = None
         self._image_buffer = None
         self._want_full = False
+        self._full_view = None          # camera of the last full-resolution frame
         self.full_frame_cost = 0.0
         self._full_timer = QtCore.QTimer(self)
         self._full_timer.setSingleShot(True)
@@ -151,17 +206,23 @@ class View3D(QtWidgets.QWidget):
         dt = time.perf_counter() - t0
         self.frame_times.append(dt)
         del self.frame_times[:-100]
-        if scale == 1.0:
-            self.full_frame_cost = dt
+        if scale == 1.0 and not self._renderers[scale].cached:
+            self.full_frame_cost = dt       # what a frame costs when the cache cannot serve
 
     def paintEvent(self, event):
-        # software GL: while things move or the camera turns, a full frame that costs more than
-        # FAST_FRAME is drawn at half resolution; the full one follows once it is still
-        fast = not self._want_full and self.full_frame_cost > FAST_FRAME
+        # software GL: while the camera moves, a full frame that costs more than FAST_FRAME is
+        # drawn at half resolution; the full one follows once it is still. With the camera
+        # still, models that move are drawn over the cached still scene (ViewRenderer): full
+        # resolution.
+        view = self.camera.pose().matrix().tobytes()
+        fast = not self._want_full and self.full_frame_cost > FAST_FRAME and \
+            view != self._full_view
         self._want_full = False
         self.render_now(INTERACTIVE_SCALE if fast else 1.0)
         if fast:
             self._full_timer.start()
+        else:
+            self._full_view = view
         p = QtGui.QPainter(self)
         p.drawImage(self.rect(), self._image)
         p.end()

@@ -212,13 +212,15 @@ class Renderer:
         if zbuf is not None:
             self._fbo.read_into(zbuf, attachment=-1, alignment=1, dtype='f4')
 
-    def _gl_draw(self, viewproj, eye, models):
-        """Draw `models` (render()'s list) into this renderer's framebuffer (GL thread)."""
+    def _gl_draw(self, viewproj, eye, models, clear=True):
+        """Draw `models` (render()'s list) into this renderer's framebuffer (GL thread), on
+        the sky colour or (clear False) over what the framebuffer holds."""
         ctx = gl.context()
         self._fbo.use()
         ctx.enable_only(ctx.DEPTH_TEST | ctx.CULL_FACE)
         ctx.front_face = 'cw'          # the projection flips Y (image rows top first)
-        self._fbo.clear(*self._background, depth=1.0)
+        if clear:
+            self._fbo.clear(*self._background, depth=1.0)
         n, vec, dif, spe = self._lights
         handles = {}
         for textured, prog in self._progs.items():
