@@ -216,6 +216,7 @@ class AmclOfficeTest(unittest.TestCase):
         self.assertIsNotNone(converged_at, 'amcl did not converge within %.0f s of sim time driving after '
                              'initialpose: error %.3f m %.3f rad' % (CONVERGE_S, dxy, dyaw))
 
+
 if __name__ == '__main__':
     rospy.init_node('check_amcl_sim')
     rostest.rosrun('amcl', 'check_amcl_sim', AmclOfficeTest)

@@ -5,7 +5,6 @@ plotting it (checked in a screenshot), and the Plot + Publisher perspective expo
 import json
 import os
 import shutil
-import subprocess
 import sys
 
 import numpy as np

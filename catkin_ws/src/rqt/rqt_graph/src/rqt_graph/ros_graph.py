@@ -1,5 +1,4 @@
 """rqt_graph plugin `RosGraph` ("Node Graph"): nodes and topics from the master, drawn by graphviz."""
-import os
 
 from python_qt_binding.QtCore import Qt
 from python_qt_binding.QtGui import QIcon, QPainter
@@ -225,7 +224,8 @@ class RosGraphWidget(QWidget):
 
     def save_svg(self, path=None):
         from python_qt_binding.QtSvg import QSvgGenerator
-        path = path or QFileDialog.getSaveFileName(self, 'Save as SVG', 'rosgraph.svg', 'Scalable Vector Graphic (*.svg)')[0]
+        path = path or QFileDialog.getSaveFileName(self, 'Save as SVG', 'rosgraph.svg',
+                                                   'Scalable Vector Graphic (*.svg)')[0]
         if not path:
             return
         gen = QSvgGenerator()
