@@ -78,7 +78,8 @@ const samePose = (a, b) => ['x', 'y', 'z'].every(k => Math.abs(a.position[k] - b
 
 // ctx: {ros, bar (element for the tool rows), holder (the canvas' parent), canvas, camera,
 // controls, scene, markers() (the scene markers display or null), toFixed(frame) (Matrix4 of a
-// frame in the view's fixed frame or null), dirty(), relayout() (the tool rows changed height)}
+// frame in the view's fixed frame or null), dirty(), relayout() (the tool rows changed height),
+// place() (put everything where it is now)}
 export function attachSimEditor(ctx) {
   const { ros, camera, controls, scene, canvas } = ctx;
   const info = el('span', { className: 'sim-info' });
@@ -349,6 +350,9 @@ export function attachSimEditor(ctx) {
   const pick = ev => {
     const m = ctx.markers();
     if (!m) return null;
+    ctx.place();                        // markers that came since the last frame, placed
+    m.object.updateMatrixWorld(true);
+    camera.updateMatrixWorld();
     ray.setFromCamera(ndc(ev), camera);
     for (const hit of ray.intersectObject(m.object, true)) {
       if (!hit.object.isMesh || !hit.object.visible) continue;

@@ -139,6 +139,7 @@ export default {
       ros, bar, holder, canvas: renderer.domElement, camera, controls, scene,
       markers: () => { const d = displays.get(SCENE); return d && d.inst; },
       toFixed: frame => tf.lookup(frame, fixed), dirty: () => { dirty = true; }, relayout: () => fit(),
+      place: () => placeScene(),
     });
     fit();
 
@@ -148,14 +149,18 @@ export default {
       obj.visible = !!m;
       if (m) { obj.matrixAutoUpdate = false; obj.matrix.copy(m); obj.matrixWorldNeedsUpdate = true; }
     };
+    // everything where TF (and the editor's live poses) put it now; the editor picks with it
+    const placeScene = () => {
+      if (robot) robot.links.forEach((o, name) => { place(o, name); o.visible = o.visible && showRobot.checked; });
+      for (const d of displays.values()) if (d.inst) d.inst.place((obj, frame) => place(obj, frame));
+      editor.afterPlace();
+    };
     const frameLoop = now => {
       raf = requestAnimationFrame(frameLoop);
       if (!dirty || now - last < FRAME_MS) return;
       last = now;
       dirty = false;
-      if (robot) robot.links.forEach((o, name) => { place(o, name); o.visible = o.visible && showRobot.checked; });
-      for (const d of displays.values()) if (d.inst) d.inst.place((obj, frame) => place(obj, frame));
-      editor.afterPlace();
+      placeScene();
       if (follow.checked) {
         const base = BASE_FRAMES.map(f => tf.lookup(f, fixed)).find(Boolean);
         if (base) {
