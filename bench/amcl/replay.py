@@ -89,7 +89,7 @@ def run(bag_path, map_path, overrides, seed=1, quiet=False, t_end=None, truth_od
     truth0 = interp(gt_t, gt_p, t_start)
     off = np.array([0.5 * math.cos(math.radians(-45)), 0.5 * math.sin(math.radians(-45)), math.radians(20)])
     loc.set_map(gmap, initial_pose=truth0 + off, initial_cov=cfg.initial_cov)
-    converged, errs, costs, trace = None, [], [], []
+    converged, costs, trace = None, [], []
     for scan in scans:
         ts = scan.header.stamp.to_sec()
         if ts < t_start:
