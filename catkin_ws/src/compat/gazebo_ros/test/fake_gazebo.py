@@ -9,7 +9,6 @@ so far, and appends one JSON line per request to RECORD_FILE. A model whose name
 "bad" is refused (success false, status "fake: refusing model NAME").
 """
 import json
-import sys
 import threading
 
 import rospy
