@@ -1,11 +1,9 @@
 """The rospy_tutorials command lines as a student types them, against a private roscore."""
 import re
 import subprocess
-import time
 
 import pytest
 from course_testing import Proc, wait_for
-
 
 
 MD5 = {
