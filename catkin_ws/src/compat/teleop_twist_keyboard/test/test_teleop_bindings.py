@@ -1,9 +1,7 @@
 """Unit tests of the key maps, the command state and the publishing thread (no roscore)."""
-import threading
 import time
 
 import numpy as np
-import pytest
 
 from twist_keyboard.bindings import (HELP, MOVE_BINDINGS, SPEED_BINDINGS, TeleopState, vels)
 from twist_keyboard.publish_thread import PublishThread, make_twist
