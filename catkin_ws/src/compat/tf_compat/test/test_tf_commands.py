@@ -2,7 +2,6 @@
 robot_state_publisher writes frames.pdf and frames.gv in the current directory, Debian's other
 tf executables stay reachable as `rosrun tf ...` / roslaunch pkg="tf", `import tf` works, and
 `rosrun tf2_tools view_frames.py` still works. One roscore, one robot_state_publisher."""
-import os
 import subprocess
 
 import pytest

@@ -1,5 +1,4 @@
 """tf_compat.view_frames without ROS: dot's version check and the files it writes."""
-import subprocess
 import types
 
 import pytest
