@@ -3,7 +3,7 @@
 Works headless: QImage and QPainter need neither a display nor a QApplication. Coordinates
 given to it are world metres (y up); it converts to pixels (y down) with 45 px per metre.
 """
-from PyQt5.QtCore import QPointF, Qt
+from PyQt5.QtCore import QPointF
 from PyQt5.QtGui import QColor, QImage, QPainter, QPen
 
 from turtlesim.world import METER_PX, WINDOW_PX, WORLD_SIZE
