@@ -167,4 +167,3 @@ def unspawner_main(argv):
     restart()
     rospy.signal_shutdown('unspawner done')
     return 0
-
