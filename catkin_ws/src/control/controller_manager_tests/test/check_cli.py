@@ -106,7 +106,6 @@ class CliTest(unittest.TestCase):
         self.assertEqual({'velocity_j2': 'running'}, self.cm.states(), out)
         self.assertIn('Restarted controllers: velocity_j2', out)
 
-
     def test_controller_group(self):
         """`controller_group list|spawn|switch` over ~controller_groups (here the global one)."""
         rospy.set_param('/controller_groups', {'drive': ['velocity_j2', 'state'],
