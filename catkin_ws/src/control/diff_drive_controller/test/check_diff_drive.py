@@ -36,7 +36,6 @@ def yaw_of(q):
     return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
-
 class DiffDriveTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
