@@ -21,7 +21,6 @@ RUNNING = ['joint_state_controller', 'position_controller', 'continuous_position
            'prismatic_position_controller', 'group_position_controller', 'effort_controller']
 
 
-
 class Fixture(object):
     def __init__(self):
         self.lock = threading.Lock()
