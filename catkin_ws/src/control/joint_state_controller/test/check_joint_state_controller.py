@@ -24,7 +24,6 @@ def wait_for(what, condition):
         time.sleep(0.01)
 
 
-
 class JointStateControllerTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -79,7 +78,7 @@ class JointStateControllerTest(unittest.TestCase):
         load = rospy.ServiceProxy('/controller_manager/load_controller', LoadController)
         self.assertFalse(load('no_rate_controller').ok)
         wait_for('the original message', lambda: any("Parameter 'publish_rate' not set" in m
-                                                      for m in list(self.logs)))
+                                                     for m in list(self.logs)))
         self.assertFalse(load('unknown_joint_controller').ok)
         names = [c.name for c in rospy.ServiceProxy('/controller_manager/list_controllers',
                                                     ListControllers)().controller]
