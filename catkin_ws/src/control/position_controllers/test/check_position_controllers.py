@@ -17,7 +17,6 @@ WALL_TIMEOUT = 60.0
 RUNNING = ['joint_state_controller', 'position_controller', 'group_position_controller']
 
 
-
 class PositionControllersTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
