@@ -19,7 +19,6 @@ RUNNING = ['joint_state_controller', 'wheel_controller', 'position_controller',
            'group_velocity_controller']
 
 
-
 class VelocityControllersTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
