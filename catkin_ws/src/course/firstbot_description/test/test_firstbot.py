@@ -79,7 +79,7 @@ def test_display_launch_in_rviz(rviz_env, tmp_path, launch, args):
         assert 'first_robot' in desc and 'imu_joint' in desc, desc
         # RViz is up once its node registers with the master
         wait_for(lambda: '/rviz' in subprocess.run(['rosnode', 'list'], env=env, capture_output=True,
-                                                    text=True, timeout=60).stdout.split(),
+                                                   text=True, timeout=60).stdout.split(),
                  120, 0.5, 'RViz to register with the master')
         assert p.alive() and 'process has died' not in p.output(), p.output()[-3000:]
     finally:
