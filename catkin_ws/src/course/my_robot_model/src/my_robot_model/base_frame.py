@@ -4,7 +4,6 @@ One closed solid: an octagonal (chamfered rectangle) prism with a pocket cut fro
 leaving walls of `wall` thickness and a floor of `floor` thickness. Coordinates are metres in
 base_link's frame (centred, z from -height/2 to +height/2), so the URDF uses scale 1.0.
 """
-import io
 import math
 
 import numpy as np
