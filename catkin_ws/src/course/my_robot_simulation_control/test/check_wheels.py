@@ -63,7 +63,6 @@ class WheelCheck(unittest.TestCase):
         self.assertGreater(len(late), 10, 'too few joint_states in 1 s of sim time')
         for s in late:
             q = dict(zip(s.name, s.position))
-            v = dict(zip(s.name, s.velocity))
             t = s.header.stamp.to_sec()
             if self.mode == 'position':
                 self.assertAlmostEqual(q['wheel_left_joint'], self.target, delta=self.tolerance,
