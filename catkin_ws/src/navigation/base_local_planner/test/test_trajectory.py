@@ -1,5 +1,4 @@
 """Trajectory rollout core without a master: map grids, simulation, scoring, choice."""
-import math
 
 import numpy as np
 import pytest

@@ -12,7 +12,6 @@ and occ_cost the highest cost under the centre or the footprint outline along th
 the original.
 """
 import math
-from collections import deque
 
 import numpy as np
 from scipy import sparse
@@ -299,7 +298,7 @@ class TrajectoryPlanner:
                                           np.asarray(self.footprint, dtype=float).reshape(-1, 2),
                                           xs, ys, tr.th, exact=p.exact_outline)
         illegal = ~pin.all(axis=1) | (fp_cost < 0) | ((center == LETHAL_OBSTACLE) |
-                                                     (center == NO_INFORMATION)).any(axis=1)
+                                                      (center == NO_INFORMATION)).any(axis=1)
         if len(self.footprint) < 3:
             illegal |= (center == INSCRIBED_INFLATED_OBSTACLE).any(axis=1)
         occ = np.maximum(np.where(center == NO_INFORMATION, 0, center).max(axis=1), fp_cost)
