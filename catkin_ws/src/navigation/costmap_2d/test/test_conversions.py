@@ -2,7 +2,6 @@
 import math
 import struct
 
-import numpy as np
 import pytest
 from sensor_msgs.msg import LaserScan, PointCloud2, PointField
 

@@ -13,7 +13,7 @@ from . import conversions as conv
 from .costmap import (FootprintError, make_footprint_from_radius, pad_footprint,
                       parse_footprint, transform_footprint)
 from .layers import InflationLayer, LayeredCostmap, Observation, ObstacleLayer, StaticLayer
-from .params import COSTMAP_DEFAULTS, CostmapParamError, layer_specs, observation_sources
+from .params import COSTMAP_DEFAULTS, layer_specs, observation_sources
 
 
 class ObservationSource:
