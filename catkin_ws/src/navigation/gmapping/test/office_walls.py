@@ -97,4 +97,3 @@ def office_paths():
     sdf = os.path.join(rp.get_path('ode_sim'), 'models', 'office', 'model.sdf')
     world = os.path.join(rp.get_path('space_scanner_simulation'), 'worlds', 'office.world')
     return sdf, world
-

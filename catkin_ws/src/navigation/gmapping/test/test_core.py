@@ -12,7 +12,7 @@ import pytest
 from gmapping import native
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import segment_lidar  # noqa: E402
+import segment_lidar
 from gmapping.motion import absolute_difference, draw_from_motion
 from gmapping.params import ParamError, SlamParams, validate
 from gmapping.rbpf import GridSlam

@@ -14,7 +14,7 @@ import pytest
 from gmapping import native
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import segment_lidar  # noqa: E402
+import segment_lidar
 from gmapping.params import SlamParams
 
 # a 3 x 2.4 m room with a pillar, walls off the cell borders

@@ -18,7 +18,7 @@ INT_PARAMS = ('particles', 'kernelSize', 'iterations', 'lskip', 'throttle_scans'
 STR_PARAMS = ('base_frame', 'map_frame', 'odom_frame')
 NO_SCAN_WARN = 5.0      # s without a scan before the watchdog warns
 TF_WAIT = 1.0           # s (simulated when use_sim_time) a scan waits for its odometry transform,
-                        # as the original's tf message filter holds scans until TF has caught up
+# as the original's tf message filter holds scans until TF has caught up
 
 
 def read_params():
