@@ -45,7 +45,7 @@ def map_server_main():
     from nav_msgs.msg import MapMetaData
     from nav_msgs.srv import LoadMap, LoadMapResponse
     from map_server.conversions import NumpyGetMap, NumpyGetMapResponse, NumpyOccupancyGrid, \
-        grid_metadata, grid_to_msg
+        grid_to_msg
 
     argv = rospy.myargv(sys.argv)
     try:
