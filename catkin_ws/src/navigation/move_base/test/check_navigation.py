@@ -5,7 +5,6 @@ costmaps and the plan are published; a goal inside a wall is aborted with the re
 the recoveries. All waits are on sim time with generous limits."""
 import math
 import os
-import threading
 import unittest
 
 import actionlib
@@ -13,7 +12,7 @@ import rospy
 import rostest
 from actionlib_msgs.msg import GoalStatus
 from gazebo_msgs.srv import GetModelState
-from geometry_msgs.msg import PoseStamped, Twist
+from geometry_msgs.msg import Twist
 from move_base_msgs.msg import MoveBaseAction, MoveBaseGoal
 from nav_msgs.msg import OccupancyGrid, Path
 
