@@ -1,7 +1,5 @@
 """NavfnROS: the navfn global planner behind nav_core's interface, ~make_plan and ~plan."""
-import math
 
-import numpy as np
 import rospy
 from nav_msgs.msg import OccupancyGrid, Path
 from nav_msgs.srv import GetPlan, GetPlanResponse
