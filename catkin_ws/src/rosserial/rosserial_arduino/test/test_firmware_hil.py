@@ -258,7 +258,7 @@ def test_time_arithmetic_and_float64_on_the_avr(bridge, core, tmp_path):
     import yaml
     f = yaml.safe_load(out.split('---')[0])['data'].split()
     got = dict((f[i], f[i + 1:i + 3]) for i in range(0, len(f), 3) if f[i] not in ('cmp',
-                                                                                 'tosec', 'double'))
+                                                                                   'tosec', 'double'))
     assert got['add'] == ['3', '100000000']              # 1.5 + 1.6
     assert got['wrap'] == ['4294967295', '500000000']    # 0 - 0.5 wraps as unsigned seconds
     assert got['diff'] == ['-2', '800000000']            # 3.9 - 5.1 = -1.2 normalised
