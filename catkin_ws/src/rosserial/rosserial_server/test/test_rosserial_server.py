@@ -6,7 +6,6 @@
   and adc_service (a workspace message, a device service, a `~` parameter); the port vanishing
   and coming back is reopened."""
 import os
-import re
 import shutil
 import subprocess
 import sys
