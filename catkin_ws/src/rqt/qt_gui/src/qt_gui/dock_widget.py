@@ -1,5 +1,5 @@
 """The dock a plugin widget lives in; tells its handler when the user closes it."""
-from python_qt_binding.QtCore import Qt, Signal
+from python_qt_binding.QtCore import Signal
 from python_qt_binding.QtGui import QIcon
 from python_qt_binding.QtWidgets import (QDockWidget, QHBoxLayout, QLabel, QStyle, QToolButton,
                                          QWidget)

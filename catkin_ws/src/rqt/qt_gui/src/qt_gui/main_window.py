@@ -1,7 +1,7 @@
 """The main window: dock area, menus (File, Plugins, Running, Perspectives, Help), status line."""
 import os
 
-from python_qt_binding.QtCore import Qt, Signal
+from python_qt_binding.QtCore import Signal
 from python_qt_binding.QtGui import QIcon
 from python_qt_binding.QtWidgets import (QAction, QFileDialog, QInputDialog, QMainWindow,
                                          QMessageBox)
