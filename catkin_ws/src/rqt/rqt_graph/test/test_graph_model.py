@@ -15,7 +15,7 @@ SNAP = {
                  ('/cam', ' /cam/image_raw/theora'), (' /cam/image_raw', '/listener'),
                  (' /cam/image_raw/compressed', '/listener'), (' /cam/image_raw/theora', '/listener')]
     + [(' /move/%s' % s, '/mover') for s in ('goal', 'cancel')] + [('/mover', ' /move/%s' % s) for s in
-                                                                     ('status', 'result', 'feedback')]
+                                                                   ('status', 'result', 'feedback')]
     + [('/listener', ' /move/%s' % s) for s in ('goal', 'cancel')]
     + [(' /move/%s' % s, '/listener') for s in ('status', 'result', 'feedback')]
     + [('/srv', ' /srv/parameter_updates'), (' /srv/parameter_updates', '/listener')],

@@ -5,7 +5,6 @@ import shutil
 import sys
 import time
 
-import numpy as np
 from course_testing import Proc, screenshot, wait_for
 from course_testing.image import load_rgb
 from course_testing.rqt_driver import dark_fraction, gui_env, states

@@ -1,7 +1,7 @@
 """Draws a `dot -Tplain` layout into a QGraphicsScene: ellipses/boxes with tooltips, splines."""
 import math
 
-from python_qt_binding.QtCore import QPointF, QRectF, Qt
+from python_qt_binding.QtCore import QPointF, QRectF
 from python_qt_binding.QtGui import QBrush, QColor, QPainterPath, QPen, QPolygonF
 from python_qt_binding.QtWidgets import (QGraphicsEllipseItem, QGraphicsPathItem,
                                          QGraphicsPolygonItem, QGraphicsRectItem,
