@@ -1,6 +1,5 @@
 """rqt's command line without a GUI (in-process; QT_QPA_PLATFORM=offscreen from the runner):
 --list-plugins, --standalone matching and the original's option errors."""
-import os
 
 import pytest
 from rqt_gui.main import Main
