@@ -110,7 +110,7 @@ def test_unknown_type():
 def test_check_field_types():
     assert check_field(Header, parse_field_path('seq')) == 'uint32'
     assert check_field(Header, parse_field_path('stamp')) == 'time'
-    assert check_field(Twist, parse_field_path('angular')) is type(Twist().angular)
+    assert check_field(Twist, parse_field_path('angular')) is type(Twist().angular)  # noqa: E721
 
 
 class FakeROSData(ROSData):

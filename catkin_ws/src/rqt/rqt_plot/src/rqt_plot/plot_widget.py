@@ -1,6 +1,5 @@
 """The Qt side of rqt_plot: a pyqtgraph plot of ROSData curves against time, with a legend,
 an auto-scrolling time window, y autoscaling, a field entry and a status line."""
-import sys
 
 import numpy as np
 import pyqtgraph as pg
