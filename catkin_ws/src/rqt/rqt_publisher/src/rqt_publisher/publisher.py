@@ -9,7 +9,7 @@ from python_qt_binding.QtWidgets import (QAbstractItemView, QComboBox, QHBoxLayo
                                          QVBoxLayout, QWidget)
 from rqt_gui_py.plugin import Plugin
 
-from rqt_publisher.expression import ExpressionError, field_paths, fill_message, split_array
+from rqt_publisher.expression import field_paths, fill_message
 
 COL_TOPIC, COL_TYPE, COL_RATE, COL_EXPR = range(4)
 ROLE_PATH = Qt.UserRole
