@@ -6,7 +6,7 @@ import sys
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from imu_sim import simulate, tilt_error_deg, angle_deg, G  # noqa: E402
+from imu_sim import simulate, tilt_error_deg, angle_deg, G
 
 from imu_filter_madgwick.filter import (MadgwickFilter, orientation_from_measurement, quat_from_rpy,
                                         quat_to_rpy, FreeFall, FREE_FALL_WARNING)
