@@ -11,7 +11,6 @@ import tf2_ros
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu
-from geometry_msgs.msg import PoseWithCovarianceStamped
 
 from course_runtime.geometry import yaw_of
 from robot_localization.srv import SetPose, SetPoseRequest

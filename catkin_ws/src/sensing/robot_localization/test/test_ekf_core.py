@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 sys.path.insert(0, os.path.dirname(__file__))
-from drive_sim import drive, truth_at  # noqa: E402
+from drive_sim import drive, truth_at
 
-from robot_localization.ekf import Ekf, Measurement, X, Y, YAW, VX, VYAW, AX, ROLL, PITCH, normalize_angle
+from robot_localization.ekf import Ekf, Measurement, X, Y, YAW, VX, VYAW, ROLL, PITCH, normalize_angle
 from robot_localization.sensors import (SensorConfig, twist_measurement, pose_measurement,
                                         imu_angular_measurement, config_warnings,
                                         covariance_warnings, relative_pose)
