@@ -1,6 +1,5 @@
 """Unit tests of the A1 protocol, the scan layout, the driver and the emulator (no roscore)."""
 import math
-import os
 import threading
 import time
 
