@@ -89,7 +89,7 @@ def test_contacts_friction_bounce_and_fdir_match_the_python_loop():
         pw.add_model(ground())
         pw.add_model(box('slider', Pose((0, 0, 0.25)), surface=Surface(mu1=0.3, mu2=0.3)))
         pw.add_model(box('ball', Pose((2, 0, 1.0)), surface=Surface(bounce=0.6,
-                                                                   bounce_threshold=0.01)))
+                                                                    bounce_threshold=0.01)))
         pw.add_model(box('aniso', Pose((-2, 0, 0.25)), surface=Surface(
             mu1=1.0, mu2=0.05, fdir1=(1.0, 0.0, 0.0))))
         pw.add_model(box('stack', Pose((0, 2, 0.25))))

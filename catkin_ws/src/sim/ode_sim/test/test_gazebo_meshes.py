@@ -40,7 +40,7 @@ def test_collada_unit_up_axis_hierarchy_and_two_geometries():
     m = load_mesh(DAE)
     # centimetres to metres, Y up to Z up, the block node's translate and each node's own
     assert [(p.node, p.name) for p in m.parts] == [('lower', 'lower_geom'),
-                                                    ('upper', 'upper_geom')]
+                                                   ('upper', 'upper_geom')]
     lo, up = m.parts
     assert np.allclose(lo.positions.min(axis=0), [-0.5, -0.5, 0.0], atol=1e-6)
     assert np.allclose(lo.positions.max(axis=0), [0.0, 0.5, 0.2], atol=1e-6)

@@ -218,7 +218,7 @@ def test_sensor_object_names_itself_in_errors_and_string_values_parse():
 def test_zero_or_none_noise_leaves_ranges_alone():
     raw = [1.0, 2.0, 3.0, 1.5]
     for extra in ({'noise_mean': 0.0, 'noise_stddev': 0.0}, {'noise_type': 'none',
-                                                            'noise_stddev': 0.5}):
+                                                             'noise_stddev': 0.5}):
         laser = LaserModel(dict(FOUR, **extra))
         assert not laser.noise
         np.testing.assert_array_equal(laser.to_ranges(raw)[0], raw)

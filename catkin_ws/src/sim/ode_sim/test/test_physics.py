@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
-                           Physics, Surface, Visual)
+                                       Physics, Surface, Visual)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.description.transforms import Pose
 
@@ -174,7 +174,7 @@ def test_mesh_collision_becomes_its_bounding_box_with_a_warning_on_the_python_co
     m.links[0].collisions = [Collision('c', mesh)]
     pw = PhysicsWorld(Physics(), core='python')
     pw.add_model(ground())
-    sm = pw.add_model(m)
+    pw.add_model(m)
     shape = [s for s in pw.collision_shapes() if s.model == 'thing'][0]
     assert shape.geometry.kind == 'box' and shape.geometry.size == pytest.approx((1, 2, 3))
     assert shape.world_pose().p == pytest.approx([1.5, 2.0, 6.5])

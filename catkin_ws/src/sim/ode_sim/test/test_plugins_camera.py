@@ -13,7 +13,7 @@ import rospy
 
 from ode_sim.ros import plugins
 from ode_sim.description.model import (Collision, Geometry, Inertial, Light, Link, Model, ModelError,
-                           Physics, Plugin as PluginDesc, Sensor, Visual, World)
+                                       Physics, Plugin as PluginDesc, Sensor, Visual, World)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins import camera as camera_plugin
 from ode_sim.ros.plugins.base import PluginContext

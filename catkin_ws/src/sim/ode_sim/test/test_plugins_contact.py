@@ -18,7 +18,6 @@ from ode_sim.ros import plugins
 from ode_sim.ros.convert import ros_time_text
 from ode_sim.ros.plugins.base import NO_WORK, PluginContext
 from ode_sim.ros.plugins.contact import BumperPlugin
-from ode_sim.ros.plugins.rosio import MemoryPublisher
 
 MASS = 2.0
 G = 9.8
@@ -80,7 +79,7 @@ def test_registry_and_topic_frame_defaults():
     assert p.pub.name == '/bumper_states' and p.pub.queue_size == 1
     assert p.frame_id == 'world'
     pw, m, ctx, p = make(tags={'robotNamespace': 'bot', 'bumperTopicName': 'bumper',
-                                'frameName': 'base'})
+                               'frameName': 'base'})
     assert p.pub.name == '/bot/bumper' and p.frame_id == 'base'
 
 

@@ -17,7 +17,7 @@ from sensor_msgs.msg import JointState
 from std_msgs.msg import Bool
 from ode_sim.ros import plugins
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError, Physics,
-                           Plugin as PluginDesc, Transmission)
+                                       Plugin as PluginDesc, Transmission)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import PluginContext
 from ode_sim.ros.plugins.rosio import FakeClock, RosIO
@@ -185,7 +185,7 @@ def test_nan_and_missing_names_keep_the_previous_command(monkeypatch):
 
 def test_estop_zeroes_and_holds():
     pw, m, plug = bridge({'hinge': 'PositionJointInterface', 'spin': 'VelocityJointInterface'},
-                        eStopTopic='e_stop')
+                         eStopTopic='e_stop')
     command(plug, hinge=('position', 0.8), spin=('velocity', 2.0))
     run(pw, plug, 0.3)
     plug.on_estop(Bool(True))
@@ -208,7 +208,7 @@ def test_control_period_messages_sim_type_and_bad_transmissions(monkeypatch):
     assert ('logerr', 'Desired controller update period (0.0005 s) is faster than the gazebo '
             'simulation period (0.001 s).') in logs
     _, _, plug = bridge({'hinge': 'PositionJointInterface'}, controlPeriod=0.02,
-                       robotSimType='my_pkg/MyRobotHWSim')
+                        robotSimType='my_pkg/MyRobotHWSim')
     assert plug.control_period == 0.02
     assert any(lv == 'logwarn' and 'is slower than the gazebo' in m for lv, m in logs)
     assert any('robotSimType' in m for _, m in logs)
@@ -303,6 +303,7 @@ def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
     fake = tmp_path / 'gazebo_ros_control_node'
     fake.write_text('#!/bin/sh\necho "$@" > %s\nexec sleep 60\n' % args)
     fake.chmod(0o755)
+
     class LiveIO:                   # "ROS is up", endpoints that do nothing
         live = True
 
@@ -339,7 +340,7 @@ def integration():
     a position command on NS/ode_sim/joint_commands (same stamp). The sim runs here too."""
     rospy.init_node('control_bridge_check')
     pw, m, plug = bridge({'hinge': POS}, lockstep=True, io=RosIO(), controlPeriod=0.005,
-                        controllerNode='false')      # this script is the controller side
+                         controllerNode='false')      # this script is the controller side
     joints = rospy.get_param('/rig/ode_sim/joints')
     assert joints[0]['name'] == 'hinge' and joints[0]['interface'] == POS, joints
     assert rospy.get_param('/rig/ode_sim/control_period') == 0.005

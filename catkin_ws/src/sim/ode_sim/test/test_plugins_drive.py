@@ -8,7 +8,7 @@ import rospy
 from geometry_msgs.msg import Twist
 from ode_sim.ros import plugins
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Model, ModelError,
-                           Physics, Plugin as PluginDesc, Surface)
+                                       Physics, Plugin as PluginDesc, Surface)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import PluginContext
 from ode_sim.description.transforms import Pose

@@ -6,7 +6,7 @@ import pytest
 
 from ode_sim.ros import plugins
 from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
-                           Plugin as PluginDesc, Sensor, Surface)
+                                       Plugin as PluginDesc, Sensor, Surface)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import PluginContext
 from ode_sim.description.transforms import Pose

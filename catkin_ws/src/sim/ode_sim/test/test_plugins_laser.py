@@ -12,7 +12,7 @@ import rospy
 
 from ode_sim.ros import plugins
 from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, ModelError, Physics,
-                           Plugin as PluginDesc, Sensor, Visual, World)
+                                       Plugin as PluginDesc, Sensor, Visual, World)
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins import laser as laser_plugin
 from ode_sim.ros.plugins.base import PluginContext

@@ -4,7 +4,6 @@ and 50 Hz diff-drive odometry; a subscriber in another process records header st
 the sensor publishers had a queue of 1, rospy dropped messages whenever its sender thread
 waited for the GIL (bench/sim_rtf counted 9 % missing)."""
 import json
-import os
 import subprocess
 import sys
 

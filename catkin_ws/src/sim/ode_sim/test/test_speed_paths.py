@@ -10,15 +10,13 @@ import random
 import numpy as np
 import pytest
 
-from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model, Physics,
+from ode_sim.description.model import (Collision, Geometry, Inertial, Link, Model,
                                        Plugin as PluginDesc, Sensor)
 from ode_sim.description.transforms import (Pose, qmul, qnormalize, qrotate, qrotate_inv,
                                             quat_multiply, quat_to_matrix, yaw_of)
 from ode_sim.engine import _core
 from ode_sim.engine.bodies import ros_q
-from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros import plugins
-from ode_sim.ros.plugins.base import PluginContext
 from ode_sim.ros.plugins.rosio import MemoryIO, TfBatch, _NoYieldWrite, _queued
 from ode_sim.ros.stepping import StepLoop
 

@@ -3,7 +3,6 @@ work in one call (SimNode.group_size); the plugins then publish at the same simu
 with the same data, as when stepping one step at a time."""
 import types
 
-import pytest
 
 from ode_sim.description.model import Collision, Geometry, Inertial, Link, Model, Physics, Surface
 from ode_sim.description.model import Plugin as PluginDesc
@@ -31,8 +30,8 @@ def scene():
     made = []
     for rate, topic in ((100, 'imu_a'), (30, 'imu_b')):        # 30 Hz: not a whole step count
         desc = PluginDesc('imu', 'libgazebo_ros_imu.so', {'bodyName': 'box_link',
-                                                           'topicName': topic,
-                                                           'updateRate': str(rate)})
+                                                          'topicName': topic,
+                                                          'updateRate': str(rate)})
         made.append(plugins.lookup('libgazebo_ros_imu.so')(ctx, m, desc))
     return pw, made
 

@@ -94,7 +94,6 @@ def _read_stl_triangles(path, data):
     return np.array(verts, dtype=np.float64).reshape(-1, 3, 3)
 
 
-
 def _core():
     try:
         from ode_sim.engine import _core as core
@@ -175,7 +174,7 @@ def _scene(path, mtime):
                 if found is None:
                     notes.append('mesh %s: material %r: texture %r not found (searched: %s); '
                                  'drawn in its plain colour' % (path, name, tex,
-                                                                 ', '.join(searched)))
+                                                                ', '.join(searched)))
                 else:
                     mat.texture = found
         materials.append(mat)

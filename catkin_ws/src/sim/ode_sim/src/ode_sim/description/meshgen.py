@@ -165,7 +165,7 @@ def stl_bytes(part, name):
     length[length == 0] = 1.0
     n = (n / length[:, None]).astype(np.float32)
     rec = np.zeros(len(tri), dtype=np.dtype([('normal', '<f4', (3,)), ('vectors', '<f4', (3, 3)),
-                                              ('attr', '<u2')]))
+                                             ('attr', '<u2')]))
     rec['normal'] = n
     rec['vectors'] = tri
     header = ('ode_sim model library: %s' % name).encode('ascii')[:80].ljust(80, b' ')

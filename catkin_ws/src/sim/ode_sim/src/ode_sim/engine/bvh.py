@@ -7,6 +7,7 @@ import numpy as np
 from ode_sim.description.model import ModelError
 from ode_sim.engine.rayprims import BRANCH, LEAF, TOL, expand, record_hits
 
+
 class BVHForest:
     """Triangle sets, each with its own hierarchy (root), stored in shared flat arrays."""
 

@@ -29,6 +29,7 @@ from ode_sim.engine.contacts import ContactWatch
 from ode_sim.engine.pyloop import PythonLoop
 from ode_sim.engine.scene import ShapeInstance
 
+
 class PhysicsWorld:
     """ODE world + spaces + contacts, built from ode_sim.description.model descriptions."""
 

@@ -25,7 +25,7 @@ class PythonLoop:
         self.pw = pw
         self._watched = set()       # contact sensors' geoms
         self._pending = []          # this step's watched contacts:
-                                    # (geom, other, contact, joint, normal sign, force slot)
+        # (geom, other, contact, joint, normal sign, force slot)
         # finished steps' records, one list per step with contacts (the core's bound)
         self._steps = deque(maxlen=MAX_STEPS)
 

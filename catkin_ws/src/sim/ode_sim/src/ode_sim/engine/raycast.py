@@ -103,10 +103,10 @@ class _Group:
             if self.kind == 'box':
                 h = self.half
                 t, ok = k_box(ox, oy, oz, dx, dy, dz, h[:, 0, None], h[:, 1, None],
-                               h[:, 2, None], tmin)
+                              h[:, 2, None], tmin)
             else:
                 t, ok = k_cylinder(ox, oy, oz, dx, dy, dz, self.radius[:, None],
-                                    self.half_len[:, None], tmin)
+                                   self.half_len[:, None], tmin)
         ok &= t <= limit
         if excluded is not None:
             ok &= ~excluded[self.index][:, None]

@@ -12,7 +12,6 @@ BRANCH = 8      # children per inner BVH node (at most): 3 levels of binary medi
 TOL = 1e-12
 
 
-
 def as_rays(origins, directions):
     """(origins (N, 3), directions (N, 3), common origin (3,) or None)."""
     d = np.asarray(directions, dtype=float)
@@ -297,7 +296,7 @@ class Fan:
         e2 = np.where(everything, 0, e2)
         m = np.arange(len(near))
         pl, pos = expand(np.concatenate([m, m]), np.concatenate([s1, s2]),
-                          np.concatenate([np.maximum(e1 - s1, 0), np.maximum(e2 - s2, 0)]))
+                         np.concatenate([np.maximum(e1 - s1, 0), np.maximum(e2 - s2, 0)]))
         if len(pl) == 0:
             return empty, empty
         pr = self.order.take(pos)

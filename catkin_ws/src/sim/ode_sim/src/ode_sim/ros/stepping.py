@@ -19,7 +19,7 @@ class StepLoop:
         self._pre = []              # plugins overriding before_step
         self._post = []             # plugins overriding update
         self._limits = []           # their next_update
-        self.before_step_hooks = [] # callables run before each step (forces of the /gazebo API)
+        self.before_step_hooks = []  # callables run before each step (forces of the /gazebo API)
         self.step_hooks = []        # callables run after each step (model_states publisher ...)
         self.group_limits = []      # callables: when a hook next has work (see group_size)
 

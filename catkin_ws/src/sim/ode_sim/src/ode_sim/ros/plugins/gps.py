@@ -167,5 +167,4 @@ class Gps(Plugin):
         close(self.fix_pub, self.vel_pub)
 
 
-
 PLUGINS = {'libhector_gazebo_ros_gps.so': Gps, 'libgazebo_ros_gps.so': Gps}

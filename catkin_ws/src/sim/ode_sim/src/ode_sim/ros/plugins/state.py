@@ -87,7 +87,7 @@ class P3D(Plugin):
         if self.active and self.topic_name:
             from nav_msgs.msg import Odometry
             self.pub = self.ctx.io.publisher(self.topic(self.topic_name), Odometry,
-                                            queue_size=SENSOR_QUEUE)
+                                             queue_size=SENSOR_QUEUE)
 
     def _frame_state(self, link, name):
         pose = link.frame_pose(name)
@@ -174,4 +174,3 @@ PLUGINS = {
     'libgazebo_ros_p3d.so': P3D,
     'libgazebo_ros_joint_state_publisher.so': JointStatePublisher,
 }
-
