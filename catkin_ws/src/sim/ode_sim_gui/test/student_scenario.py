@@ -6,13 +6,12 @@ screenshots of the screen show the inserted models. Writes $SCENARIO_OUT/expecte
 models and their poses at saving) and screenshots to $SCENARIO_OUT."""
 import json
 import os
-import subprocess
 import time
 
 import numpy as np
 import pytest
 import rospy
-from PyQt5 import QtCore, QtGui, QtWidgets
+from PyQt5 import QtCore, QtWidgets
 
 from course_testing import screenshot
 from course_testing.image import load_rgb
@@ -137,7 +136,7 @@ def test_student_builds_saves_a_scene(qtbot, ros):
         return same
     wait_until(qtbot, settled, 30, 'the paused world to settle')
     s0 = win.client.stats
-    t0, it0, step = s0.sim_time.to_sec(), s0.iterations, s0.max_step_size
+    it0, step = s0.iterations, s0.max_step_size
     win.spin_steps.setFocus()
     win.spin_steps.lineEdit().selectAll()
     qtbot.keyClicks(win.spin_steps.lineEdit(), '100')

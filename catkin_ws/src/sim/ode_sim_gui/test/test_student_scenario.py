@@ -9,7 +9,7 @@ import os
 import subprocess
 import sys
 
-from course_testing import Proc, wait_for
+from course_testing import Proc
 from course_testing.gui_check import keep
 
 HERE = os.path.dirname(os.path.abspath(__file__))
