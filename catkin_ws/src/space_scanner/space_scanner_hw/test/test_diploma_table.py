@@ -53,7 +53,6 @@ DIPLOMA = [
 ]
 
 
-
 def table():
     with open(README) as f:
         text = f.read()

@@ -143,7 +143,7 @@ def summary(samples, a_inv, b, g=G):
     fit = residuals(samples, a_inv, b, g)
     return ('%d samples, direction coverage %.2f (0.58 = every direction); |M| - g: RMS %.4f m/s^2 '
             'raw, %.4f m/s^2 calibrated' % (len(samples), coverage(samples, b),
-                                             float(np.sqrt(np.mean(raw ** 2))), float(np.sqrt(np.mean(fit ** 2)))))
+                                            float(np.sqrt(np.mean(raw ** 2))), float(np.sqrt(np.mean(fit ** 2)))))
 
 
 # ---------------------------------------------------------------------------- ROS inputs
