@@ -20,4 +20,3 @@ def test_a_missing_package_is_roslaunchs_error(tmp_path):
     f.write_text(LAUNCH)
     err, nodes = check_launch(str(f), ['pkg:=no_such_package_here'])
     assert nodes == [] and 'no_such_package_here' in err, err
-
