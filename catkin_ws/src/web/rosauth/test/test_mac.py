@@ -23,7 +23,7 @@ def test_mac_is_sha512_of_the_originals_concatenation():
         hashlib.sha512(text.encode()).hexdigest()
     # floats count as their whole seconds (the original hashes t.sec, end.sec)
     assert M.mac(SECRET, 'a', 'b', 'r', 1000.7, 'l', 2000.2) == M.mac(SECRET, 'a', 'b', 'r', 1000,
-                                                                     'l', 2000)
+                                                                      'l', 2000)
 
 
 def test_accepts_once_then_refuses_replay():
@@ -81,12 +81,12 @@ def test_forgets_macs_that_can_no_longer_pass():
     for i in range(10):
         m = M.auth_message(SECRET, 'c', 'd', now=1000, rand=str(i))
         assert a.authenticate(*[m[k] for k in ('mac', 'client', 'dest', 'rand', 't', 'level',
-                                                'end')])[0]
+                                               'end')])[0]
     assert len(a.used) == 10
     clock.t = 1010.0
     m = M.auth_message(SECRET, 'c', 'd', now=1010, rand='new')
     assert a.authenticate(*[m[k] for k in ('mac', 'client', 'dest', 'rand', 't', 'level',
-                                            'end')])[0]
+                                           'end')])[0]
     assert len(a.used) == 1
 
 
