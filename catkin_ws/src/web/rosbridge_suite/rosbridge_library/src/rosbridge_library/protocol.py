@@ -45,7 +45,7 @@ class Protocol(object):
         self.capabilities = []
         self.finished = False
         self.errors = 0             # error statuses caused by this client (the transport's
-                                    # garbage budget reads it)
+        # garbage budget reads it)
         self.count = self.settings.get('count') or (lambda name, n=1: None)
         from rosbridge_library.capabilities import (defragmentation, services, subscribe,
                                                     topics)

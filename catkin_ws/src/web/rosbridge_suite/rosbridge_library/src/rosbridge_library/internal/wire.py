@@ -69,7 +69,7 @@ def frames(message, compression='none', fragment_size=None, mid=None):
     if compression in ('cbor', 'cbor-raw'):
         return [(to_cbor(message), True)]
     return [(_utf8(data), binary) for data, binary in _text_frames(message, compression,
-                                                                    fragment_size, mid)]
+                                                                   fragment_size, mid)]
 
 
 def _utf8(text):
@@ -82,7 +82,7 @@ def _text_frames(message, compression, fragment_size, mid):
         data = png_encode(text)
         if fragment_size and len(data) > fragment_size:
             return [(to_json(f), False) for f in fragments(data, mid or _auto_id(), fragment_size,
-                                                          op='png')]
+                                                           op='png')]
         return [(to_json({'op': 'png', 'data': data}), False)]
     if fragment_size and len(text) > fragment_size:
         return [(to_json(f), False) for f in fragments(text, mid or _auto_id(), fragment_size)]
