@@ -106,7 +106,7 @@ def test_roslibpy_without_auth_is_closed(bridge):
     finally:
         ros.close()
     wait_for(lambda: re.search(r'Client \d+ did not authenticate\. Closing connection\.',
-                           bridge.log()), 30, what="the original's refusal line logged")
+                               bridge.log()), 30, what="the original's refusal line logged")
 
 
 def test_raw_client_first_op_not_auth_closed_with_status(bridge):

@@ -45,8 +45,6 @@ FRAME_LIMIT_FACTOR = 4
 DEFAULT_MAX_MESSAGE_SIZE = 10 * 1024 * 1024   # tornado's default limit
 
 
-
-
 def _none(value):
     return value is None or (isinstance(value, str) and value.strip() in ('', 'None', 'none'))
 
