@@ -185,7 +185,6 @@ def stop_all(*procs):
             p.stop()
 
 
-
 def unique_colours(png):
     """Number of distinct colours in an image (ImageMagick `identify -format %k`)."""
     out = subprocess.run(['identify', '-format', '%k', png], stdout=subprocess.PIPE, check=True,

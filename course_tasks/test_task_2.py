@@ -73,7 +73,7 @@ def test_rosmsg_show_custom_messages(workspace):
     env = workspace['env']
     num = S.sh(['rosmsg', 'show', PKG + '/Num'], env).split('\n')
     assert [l for l in num if l] == ['string first_name', 'string last_name', 'uint8 age',
-                                    'uint32 score']
+                                     'uint32 score']
     pos = S.sh(['rosmsg', 'show', PKG + '/Position2d'], env).split('\n')
     assert [l for l in pos if l] == ['float32 x', 'float32 y']
     assert PKG + '/Position2d' in S.sh(['rosmsg', 'package', PKG], env).split()
