@@ -325,7 +325,7 @@ class ClassGrader:
                'padding:3px;vertical-align:top;font-size:12px}.FAIL{color:#a00}.pass{color:#070}</style></head><body>',
                '<h1>%s: ведомость / gradebook</h1>' % self.lab,
                '<p>%d rows: %s</p>' % (len(table), ', '.join('%s %d' % (s, sum(1 for r in table if r['status'] == s))
-                                                            for s in ('passed', 'failed', 'error'))),
+                                                             for s in ('passed', 'failed', 'error'))),
                '<table><tr>%s</tr>' % ''.join('<th>%s</th>' % titles.get(c, html.escape(c)) for c in cols)]
         for r in table:
             cells = []
@@ -335,7 +335,7 @@ class ClassGrader:
                     kind = v.split(':', 1)[0]
                     ru = r.get('_ru_' + c, '')
                     cells.append('<td class="%s">%s%s</td>' % (kind, html.escape(v),
-                                                             '<br><small>%s</small>' % html.escape(ru) if ru and kind == 'FAIL' else ''))
+                                                               '<br><small>%s</small>' % html.escape(ru) if ru and kind == 'FAIL' else ''))
                 else:
                     cells.append('<td>%s</td>' % html.escape(v))
             out.append('<tr style="background:%s">%s</tr>' % (colour.get(r['status'], '#fff'), ''.join(cells)))

@@ -61,7 +61,6 @@ def probe():
     return None
 
 
-
 def netns_prefix():
     """Run a command in a new network namespace with only its loopback up."""
     return ['unshare', '--net', '--', 'sh', '-c', 'ip link set lo up && exec "$@"', 'grading-netns']
@@ -141,7 +140,7 @@ class Sandbox:
         if self.student_env:
             # the student's own overlay environment; only the master's address from the caller
             keep = {k: env[k] for k in ('ROS_MASTER_URI', 'ROS_IP', 'DISPLAY', 'QT_QPA_PLATFORM',
-                                         *SOFTWARE_GL) if k in env}
+                                        *SOFTWARE_GL) if k in env}
             env = dict(self.student_env, **keep)
             for k in ('DISPLAY', 'QT_QPA_PLATFORM'):   # the caller's say, not the overlay's
                 if k not in keep:

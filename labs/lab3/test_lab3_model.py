@@ -59,11 +59,11 @@ def test_reference_xacro_carries_the_same_table():
 
 def test_analyse_wheels_arm_links():
     m = parse_urdf(robot(*base(), link('mount'), joint('mount_j', 'fixed', 'base_link', 'mount'),
-                              link('a1'), joint('j1', 'revolute', 'mount', 'a1'),
-                              link('a2', 'cylinder'), joint('j2', 'prismatic', 'a1', 'a2'),
-                              link('a3'), joint('j3', 'continuous', 'a2', 'a3'),
-                              link('ball', 'sphere'), joint('ball_j', 'fixed', 'base_link', 'ball'),
-                              link('cam'), joint('cam_j', 'fixed', 'base_link', 'cam')))
+                         link('a1'), joint('j1', 'revolute', 'mount', 'a1'),
+                         link('a2', 'cylinder'), joint('j2', 'prismatic', 'a1', 'a2'),
+                         link('a3'), joint('j3', 'continuous', 'a2', 'a3'),
+                         link('ball', 'sphere'), joint('ball_j', 'fixed', 'base_link', 'ball'),
+                         link('cam'), joint('cam_j', 'fixed', 'base_link', 'cam')))
     a = model.analyse(m)
     assert a['arm'] == ['j1', 'j2', 'j3'] and a['arm_codes'] == 'RPC'
     assert sorted(a['wheels']) == [('ball_j', 'S'), ('wl_j', 'C'), ('wr_j', 'C')]
@@ -73,12 +73,12 @@ def test_analyse_wheels_arm_links():
 
 def test_branching_arm_and_mimic():
     m = parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
-                              link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
-                              link('f2'), joint('f2', 'prismatic', 'a1', 'f2')))
+                         link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
+                         link('f2'), joint('f2', 'prismatic', 'a1', 'f2')))
     assert model.analyse(m)['branch'] == ('f1', 'f2')
     m = parse_urdf(robot(*base(), link('a1'), joint('a1', 'revolute', 'base_link', 'a1'),
-                              link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
-                              link('f2'), joint('f2', 'prismatic', 'a1', 'f2', mimic=True)))
+                         link('f1'), joint('f1', 'prismatic', 'a1', 'f1'),
+                         link('f2'), joint('f2', 'prismatic', 'a1', 'f2', mimic=True)))
     a = model.analyse(m)
     assert a['branch'] is None and a['arm_codes'] == 'RP'
 
@@ -93,10 +93,10 @@ def test_rotated_body_box_and_missing_box():
 
 def test_link_problems():
     m = parse_urdf(robot(link('base_footprint', shape=None, visual=False, inertial=False),
-                              joint('fp', 'fixed', 'base_footprint', 'base_link'),
-                              link('base_link', mass='0'), link('w', shape=None),
-                              joint('wj', 'continuous', 'base_link', 'w'),
-                              link('x', inertial=False), joint('xj', 'fixed', 'base_link', 'x')))
+                         joint('fp', 'fixed', 'base_footprint', 'base_link'),
+                         link('base_link', mass='0'), link('w', shape=None),
+                         joint('wj', 'continuous', 'base_link', 'w'),
+                         link('x', inertial=False), joint('xj', 'fixed', 'base_link', 'x')))
     assert model.link_problems(m) == ['base_link: mass 0', 'w: no <collision>', 'x: no <inertial>']
 
 
@@ -134,7 +134,7 @@ def test_variant_args(tmp_path):
 
 def obs_for(urdf, **launch):
     la = {'robot_description': urdf, 'kinds': {'robot_state_publisher': ['/rsp'], 'joint_state_publisher': ['/jsp'],
-                                                'rviz': ['/rviz']},
+                                               'rviz': ['/rviz']},
           'rviz': {'config': '/c.rviz', 'classes': ['rviz/RobotModel', 'rviz/TF'], 'fixed_frame': 'base_link'},
           'tf_frames': sorted(parse_urdf(urdf)['links']), 'ready_after': 3.0}
     la.update(launch)

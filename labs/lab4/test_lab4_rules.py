@@ -118,7 +118,7 @@ def crit5(controllers):
     desc = ROBOT
     o = obs([(t * 0.1, 0.05 * t, 0.0, 0.0) for t in range(401)], robot_description=desc,
             controllers=dict(controllers, joint_state_controller=ctrl('joint_state_controller/JointStateController',
-                                                                     'JointStateInterface', ())))
+                                                                      'JointStateInterface', ())))
     return {c.id: c for c in evaluate(o)}['5']
 
 

@@ -170,7 +170,7 @@ def test_grader_finds_sandboxed_processes(box, ptrace):
     root inside a Docker container is: /proc/PID/ns/* of the sandbox user's processes cannot
     be read there, so the grader saw none of a student's nodes."""
     drop = [] if ptrace == 'with' else ['setpriv', '--inh-caps=-sys_ptrace',
-                                          '--bounding-set=-sys_ptrace', '--']
+                                        '--bounding-set=-sys_ptrace', '--']
     env = dict(os.environ, PYTHONPATH=LABS_DIR + ':' + os.environ.get('PYTHONPATH', ''))
     r = subprocess.run(drop + ['/usr/bin/python3', '-c', FIND_NODE, box.to_json()], env=env,
                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, timeout=60, text=True)

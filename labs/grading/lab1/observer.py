@@ -73,4 +73,3 @@ class Lab1Observer:
 def observe(isu, pkg_dir, workdir):
     """The observation of the student's package at pkg_dir (the checker's entry point)."""
     return Lab1Observer(isu, rules.node_scripts(pkg_dir), workdir).run()
-

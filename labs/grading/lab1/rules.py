@@ -11,7 +11,7 @@ from grading.lab1.criteria import CRITERIA
 from grading.lab1.variants import NODES, operations, roles
 
 STARTUP_LIMIT = 60.0   # s from start until every node is up and the first result arrives (generous: a
-                       # loaded machine starts three rospy nodes slowly; a working solution needs ~3 s)
+# loaded machine starts three rospy nodes slowly; a working solution needs ~3 s)
 OBSERVE = 8.0          # s of observation after the first result
 MIN_RESULTS = 3        # result messages needed in the observation ("repeatedly")
 MAX_GAP = 5.0          # s, largest allowed pause between two results
@@ -19,6 +19,7 @@ WINDOW = 10.0          # s before a result: operands the computing node may stil
 LAG = 3.0              # s after a result: operands the checker may see only after the result
 ABS_TOL = 1e-3         # |result - expected| <= ABS_TOL + REL_TOL * |expected|
 REL_TOL = 1e-4
+
 
 def apply_op(op, a, b):
     if op == '+':
@@ -109,8 +110,6 @@ def match_results(results, first, second, op, int_result=False):
     return verified, wrong, example
 
 
-
-
 def fmt(x):
     return '%g' % x
 
@@ -156,7 +155,7 @@ def judge_topics(c2, obs, isu):
     if res_topic is None:
         others = sorted(t for n, ts in pubs.items() for t in ts if t.endswith('result_%s' % isu))
         where = ('; result_%s publishes %s' % (isu, ', '.join(n for n, ts in sorted(pubs.items())
-                                                             if any(t.endswith('result_' + isu) for t in ts)))
+                                                              if any(t.endswith('result_' + isu) for t in ts)))
                  if others else '')
         c2.set(False, reason('узел %s (вариант %s) не публикует %s%s' % (comp, isu[-1], ' или '.join(accepted), where),
                              'node %s (variant %s) does not publish %s%s' % (comp, isu[-1], ' or '.join(accepted), where)))

@@ -17,7 +17,7 @@ TIME_REL_TOL = 0.10
 RUN_LIMIT = 300.0      # s: the whole run, from roslaunch to both turtles at rest
 STILL_TIME = 6.0       # s: both turtles at rest this long = the run is over
 NO_MOTION_LIMIT = 90.0  # s: turtle 1 never moving this long after start = give up (generous: start-up
-                        # of two turtlesims and a controller on a loaded machine)
+# of two turtlesims and a controller on a loaded machine)
 MOVE_EPS = 0.02        # m: a pose change above this is motion
 WALL_MARGIN = 0.02     # m: a pose this close to the 0..11.09 border is a wall hit
 WORLD = 11.088889
