@@ -12,7 +12,7 @@ def check_row(row):
         return 'lidar %r is not [range_min, range_max] in m with 0 <= min < max' % (row['lidar'],)
     cam = row['camera']
     if not (isinstance(cam, list) and len(cam) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
-                                                              and x > 0 for x in cam)):
+                                                            and x > 0 for x in cam)):
         return 'camera %r is not [width, height] in pixels' % (cam,)
     return None
 

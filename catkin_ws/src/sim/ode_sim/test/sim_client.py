@@ -179,7 +179,7 @@ def _api_resets(out):
     # delete
     r = svc('/gazebo/delete_model', gs.DeleteModel)('cone_rel')
     out['delete'] = [r.success, 'cone_rel' in svc('/gazebo/get_world_properties',
-                                                   gs.GetWorldProperties)().model_names]
+                                                  gs.GetWorldProperties)().model_names]
     r = svc('/gazebo/delete_model', gs.DeleteModel)('cone_rel')
     out['delete_again'] = [r.success, r.status_message]
 
