@@ -137,3 +137,30 @@ def test_editorconfig():
                     problems.append('%s:%d: indented with a tab' % (rel, n[0]))
     assert checked > 1000, checked
     assert not problems, '\n'.join(problems[:50])
+
+
+def python_files():
+    """Every .py file and every Python script without the extension (a #! line naming python),
+    outside SKIP_DIRS."""
+    found = []
+    for root, dirs, files in os.walk(REPO):
+        dirs[:] = sorted(d for d in dirs if d not in SKIP_DIRS)
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            if name.endswith('.py'):
+                found.append(os.path.relpath(path, REPO))
+            elif '.' not in name:
+                with open(path, 'rb') as f:
+                    first = f.readline(200)
+                if first.startswith(b'#!') and b'python' in first:
+                    found.append(os.path.relpath(path, REPO))
+    return found
+
+
+def test_flake8():
+    """pyflakes + pycodestyle over the Python, with the settings of .flake8 (120 columns)."""
+    files = python_files()
+    assert len(files) > 500 and 'catkin_ws/src/navigation/amcl/scripts/amcl' in files, len(files)
+    r = subprocess.run(['/usr/bin/python3', '-m', 'flake8'] + files, cwd=REPO, capture_output=True,
+                       text=True, timeout=900)
+    assert r.returncode == 0 and not r.stdout, 'flake8 (.flake8):\n' + (r.stdout + r.stderr)[-8000:]
