@@ -1,7 +1,6 @@
 """The simulator's window ("Gazebo"): menus, toolbar, the world tree and Insert tabs, the 3D
 view and the bottom bar, on a SimClient (the /gazebo/* API; never the engine itself)."""
 import math
-import sys
 import time
 
 import numpy as np
@@ -14,7 +13,8 @@ from ode_sim_gui.client import SimError
 from ode_sim_gui.scene import SceneModel
 from ode_sim_gui.view import View3D
 
-POLL_MS = 33                 # poses -> view, at most ~30 frames/s
+POLL_MS = 10                 # new poses looked for this often
+FRAME_MS = 25                # poses -> view at most this often (40 frames/s)
 STATS_MS = 200
 ALIVE_MS = 1000
 
@@ -51,6 +51,7 @@ class MainWindow(QtWidgets.QMainWindow):
         self._pending_insert = None        # (kind, what) while placing
         self._names_seen = None
         self._version = -1
+        self._posed_at = 0.0
         self._pose_key = None
         self._connected = False
         self._closing_line = None
@@ -109,7 +110,8 @@ class MainWindow(QtWidgets.QMainWindow):
         self.act_modes['wall'] = self.act_wall
         self.act_finish_walls = self._action('Finish Walls', self.finish_walls,
                                              tip='Enter in the view does the same')
-        self.act_shapes = {k: self._action(k.capitalize(), lambda _=False, k=k: self.begin_insert('shape', k),
+        self.act_shapes = {k: self._action(k.capitalize(),
+                                           lambda _=False, k=k: self.begin_insert('shape', k),
                                            tip='Insert a %s: click on the ground' % k)
                            for k in shape_sdf.SHAPES}
         self.act_lights = {k: self._action('%s light' % k.capitalize(),
@@ -208,7 +210,9 @@ class MainWindow(QtWidgets.QMainWindow):
         names = self.client.model_names()
         if names is not None and set(names) != self._names_seen:
             self.refresh_world()
-        if self.client.version != self._version:
+        if self.client.version != self._version and \
+                time.monotonic() - self._posed_at >= FRAME_MS / 1000.0:
+            self._posed_at = time.monotonic()
             self._version = self.client.version
             lp, mp = self.client.poses()
             key = pose_key(lp, mp)
