@@ -174,6 +174,11 @@ def test_move_the_box_with_the_mouse(ed):
     # rotate: a drag to the right turns it about z (0.01 rad a pixel), in place
     s.click('.sim-mode-rotate')
     s.wait(lambda: s.sim()['selectedAt'] and not s.sim()['held'], 'the view with the moved box (pose_info)')
+    # scene markers made after the move (those of the 0.1 s around a move may be placed by the
+    # pose before or after it for up to 2 s: the view is right again with the next ones)
+    t_set = s.sim()['simTime']
+    s.wait(lambda: (s.sim()['markersAt'] or 0) > t_set + 0.2, 'scene markers made after the move')
+    time.sleep(0.3)   # a frame or two
     x, y = s.sim()['selectedAt']
     dx, dy = s.canvas_offset(x, y)
     chain = ActionChains(s.driver).move_to_element_with_offset(canvas, dx, dy).click_and_hold()
@@ -181,8 +186,13 @@ def test_move_the_box_with_the_mouse(ed):
         chain = chain.move_by_offset(15, 0).pause(0.05)
     info = s.sim()['info']
     chain.release().perform()
-    s.wait(lambda: s.sim()['info'] != info and s.sim()['info'].startswith('set unit_box to x'),
-           'the rotation set (the press was on %s)' % s.sim()['lastPick'])
+    try:
+        s.wait(lambda: s.sim()['info'] != info and s.sim()['info'].startswith('set unit_box to x'),
+               'the rotation set', timeout=30)
+    except AssertionError:
+        s.shot('.view3d-canvas', 'rotate_press_missed')
+        raise AssertionError('the rotation press at %s was on %s; the box at %s (%s)' % (
+            s.sim()['lastDown'], s.sim()['lastPick'], (x, y), s.sim()['selCentre']))
     turned = s.model_state('unit_box')
     yaw = 2 * np.arctan2(turned['orientation']['z'], turned['orientation']['w'])
     assert 0.4 < yaw < 0.8, 'yaw %.3f rad after a 60 px drag (0.6 expected)' % yaw

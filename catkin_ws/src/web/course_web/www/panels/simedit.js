@@ -502,6 +502,7 @@ export function attachSimEditor(ctx) {
       paused: stats ? stats.paused : null, rtf: stats ? stats.real_time_factor : null,
       stepSize: stats ? stats.max_step_size : null, lastStep, models: names.slice(), selected,
       selPose, selCentre: selCentre ? selCentre.toArray() : null, selectedAt: selectedAt(), lastPick, lastDown, held: hold ? hold.name : null, poseLive: poseLive(), placing: placing ? placing.base : null, mode,
+      markersAt: (() => { const m = ctx.markers(); const e = m && m.entries(null)[0]; return e ? secs(e.stamp) : null; })(),
       drawn: (() => { const m = ctx.markers(); return m ? [...new Set(m.entries(null).filter(e => e.ns && e.ns.startsWith(MODEL_NS))
         .map(e => e.ns.slice(MODEL_NS.length)))] : []; })(), library: library ? library.length : null, saved, info: info.textContent,
     }),
