@@ -22,6 +22,8 @@ import subprocess
 import tempfile
 import time
 
+from space_scanner_bringup.pace import process_tree_cpu as tree, read_stat
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 # name -> roslaunch arguments, world file (package, path), drive, {sensor topic: (type, Hz)}
@@ -66,54 +68,7 @@ LAUNCHES = {
     },
 }
 
-TICK = os.sysconf('SC_CLK_TCK')
 SEGMENTS = 4        # measured parts of the window, each followed by a bare C run
-
-
-def _stat(path):
-    with open(path) as f:
-        text = f.read()
-    comm = text[text.index('(') + 1:text.rindex(')')]
-    fields = text.rsplit(')', 1)[1].split()
-    return comm, int(fields[1]), (int(fields[11]) + int(fields[12])) / TICK   # ppid, cpu s
-
-
-def _name(pid, comm):
-    try:
-        with open('/proc/%d/cmdline' % pid, 'rb') as f:
-            argv = [a.decode('utf-8', 'replace') for a in f.read().split(b'\0') if a]
-    except OSError:
-        return comm
-    for a in argv:
-        if a.startswith('__name:='):
-            return a[len('__name:='):]
-    for a in argv:
-        if a.startswith('__ns:='):
-            break
-    base = [os.path.basename(a) for a in argv[:3]]
-    if 'roslaunch' in ' '.join(base):
-        return 'roslaunch'
-    return base[1] if base and base[0].startswith('python') and len(base) > 1 else \
-        (base[0] if base else comm)
-
-
-def tree(root):
-    """{pid: (name, cpu seconds)} of `root` and every descendant."""
-    procs = {}
-    for d in os.listdir('/proc'):
-        if d.isdigit():
-            try:
-                comm, ppid, cpu = _stat('/proc/%s/stat' % d)
-            except (OSError, ValueError):
-                continue
-            procs[int(d)] = (comm, ppid, cpu)
-    out, todo = {}, [root]
-    while todo:
-        p = todo.pop()
-        if p in procs and p not in out:
-            out[p] = (_name(p, procs[p][0]), procs[p][2])
-            todo += [q for q, v in procs.items() if v[1] == p]
-    return out
 
 
 def threads(pid):
@@ -121,7 +76,7 @@ def threads(pid):
     out = {}
     for tid in os.listdir('/proc/%d/task' % pid):
         try:
-            comm, _, cpu = _stat('/proc/%d/task/%s/stat' % (pid, tid))
+            comm, _, cpu = read_stat('/proc/%d/task/%s/stat' % (pid, tid))
             with open('/proc/%d/task/%s/schedstat' % (pid, tid)) as f:
                 run, wait = (int(x) for x in f.read().split()[:2])
         except (OSError, ValueError):

@@ -15,14 +15,20 @@ TICK = os.sysconf('SC_CLK_TCK')
 
 def _stat(pid, proc='/proc'):
     """(name, parent pid, CPU seconds: user + system) of one process, from /proc/PID/stat."""
-    with open('%s/%d/stat' % (proc, pid)) as f:
+    return read_stat('%s/%d/stat' % (proc, pid))
+
+
+def read_stat(path):
+    """(name, parent pid, CPU seconds: user + system) from a stat file: /proc/PID/stat or a
+    thread's /proc/PID/task/TID/stat (bench/sim_rtf reads both)."""
+    with open(path) as f:
         text = f.read()
     comm = text[text.index('(') + 1:text.rindex(')')]
     fields = text.rsplit(')', 1)[1].split()
     return comm, int(fields[1]), (int(fields[11]) + int(fields[12])) / TICK
 
 
-def _node_name(pid, comm, proc='/proc'):
+def node_name(pid, comm, proc='/proc'):
     """The ROS node name (__name:=) of a process, else its program's name."""
     try:
         with open('%s/%d/cmdline' % (proc, pid), 'rb') as f:
@@ -54,7 +60,7 @@ def process_tree_cpu(root, proc='/proc'):
     while todo:
         pid = todo.pop()
         if pid in table and pid not in out:
-            out[pid] = (_node_name(pid, table[pid][0], proc), table[pid][2])
+            out[pid] = (node_name(pid, table[pid][0], proc), table[pid][2])
             todo += children.get(pid, [])
     return out
 
