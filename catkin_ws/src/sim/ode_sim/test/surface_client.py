@@ -3,6 +3,7 @@
 runs one scenario as a user would (services, topics, dynamic_reconfigure) and prints one JSON
 object of what it saw; the test asserts on it."""
 import json
+import math
 import sys
 import time
 
@@ -53,6 +54,19 @@ def run_until(t_end, timeout=120.0):
             raise SystemExit('sim time did not reach %g' % t_end)
         time.sleep(0.02)
     svc('/gazebo/pause_physics', Empty)()
+
+
+def step_to(t_end):
+    """Pause and run exactly the steps that bring sim time to t_end (/gazebo/step_world): the
+    sim time a reading is taken at is counted in steps, never raced against the wall clock."""
+    from ode_sim_msgs.srv import StepWorld
+    svc('/gazebo/pause_physics', Empty)()
+    dt = svc('/gazebo/get_physics_properties', gs.GetPhysicsProperties)().time_step
+    n = int(math.ceil((t_end - sim_time()) / dt - 1e-6))
+    if n > 0:
+        r = svc('/gazebo/step_world', StepWorld)(n)
+        if not r.success:
+            raise SystemExit(r.status_message)
 
 
 def graph():
@@ -158,10 +172,10 @@ def _joints_and_wrenches(out):
     out['apply'] = [r.success, r.status_message]
     r = apply('elbow', 0.1, rospy.Time(0), rospy.Duration(1))
     out['apply_missing'] = [r.success, r.status_message]
-    run_until(t0 + 0.9)
+    step_to(t0 + 0.9)
     r = get_joint('shoulder')
     out['before_window'] = [r.success, r.type, r.position[0], r.rate[0], r.status_message]
-    run_until(t0 + 1.5)
+    step_to(t0 + 1.5)
     r = get_joint('shoulder')
     out['after_window'] = [r.position[0], r.rate[0], sim_time() - t0]
     box = svc('/gazebo/get_model_state', gs.GetModelState)('box', '')
@@ -177,22 +191,22 @@ def _joints_and_wrenches(out):
     r = svc('/gazebo/apply_body_wrench', gs.ApplyBodyWrench)(
         'nothing::link', '', Point(), w, rospy.Time(0), rospy.Duration(1))
     out['wrench_missing'] = [r.success, r.status_message]
-    run_until(t2 + 0.3)
+    step_to(t2 + 0.3)
     box = svc('/gazebo/get_model_state', gs.GetModelState)('box', '')
     out['box_twist'] = [box.twist.linear.x, box.twist.angular.z]
     # a forever effort, cleared
     t1 = sim_time()
     apply('shoulder', 0.1, rospy.Time(0), rospy.Duration(-1))
-    run_until(t1 + 0.2)
+    step_to(t1 + 0.2)
     svc('/gazebo/clear_joint_forces', gs.JointRequest)('shoulder')
     r1 = get_joint('shoulder').rate[0]
-    run_until(sim_time() + 0.2)
+    step_to(sim_time() + 0.2)
     out['cleared'] = [r1, get_joint('shoulder').rate[0]]
     # set_joint_properties: the joint motor drives it at vel with fmax
     cfg = gm.ODEJointProperties(vel=[-1.0], fmax=[10.0])
     r = svc('/gazebo/set_joint_properties', gs.SetJointProperties)('shoulder', cfg)
     out['set_joint'] = [r.success, r.status_message]
-    run_until(sim_time() + 0.3)
+    step_to(sim_time() + 0.3)
     out['motor_rate'] = get_joint('shoulder').rate[0]
 
 
