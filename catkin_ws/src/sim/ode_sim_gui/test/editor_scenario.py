@@ -5,36 +5,18 @@ property view, Translate and Rotate by dragging over the ground, Edit -> Reset M
 Reset World, the wall tool, a second window on the same simulator, Save World As."""
 import math
 import os
-import time
 import xml.etree.ElementTree as ET
 
 import numpy as np
-import pytest
-import rospy
 from PyQt5 import QtCore, QtGui, QtWidgets
 
 from course_testing import screenshot
 from course_testing.image import load_rgb
 from ode_sim_gui.client import SimClient
 from ode_sim_gui.window import MainWindow
+from scenario_common import wait_until
 
 OUT = os.environ.get('SCENARIO_OUT', '/tmp')
-
-
-@pytest.fixture(scope='module')
-def ros():
-    rospy.init_node('student', anonymous=True, disable_signals=True)
-    yield
-    rospy.signal_shutdown('done')
-
-
-def wait_until(qtbot, predicate, timeout=60.0, what='condition'):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if predicate():
-            return
-        qtbot.wait(100)
-    raise AssertionError('timed out waiting for %s' % what)
 
 
 def px_of(win, x, y, z=0.0):

@@ -6,38 +6,20 @@ screenshots of the screen show the inserted models. Writes $SCENARIO_OUT/expecte
 models and their poses at saving) and screenshots to $SCENARIO_OUT."""
 import json
 import os
-import time
 
 import numpy as np
-import pytest
-import rospy
 from PyQt5 import QtCore, QtWidgets
 
 from course_testing import screenshot
 from course_testing.image import load_rgb
 from ode_sim_gui.client import SimClient
 from ode_sim_gui.window import MainWindow
+from scenario_common import wait_until
 
 OUT = os.environ.get('SCENARIO_OUT', '/tmp')
 LIBRARY = ['traffic_cone', 'potted_plant', 'barrel']
 PLACES = {'traffic_cone': (1.5, -1.5), 'potted_plant': (-1.5, -1.5), 'barrel': (1.5, 1.5),
           'box': (-1.5, 1.5)}
-
-
-@pytest.fixture(scope='module')
-def ros():
-    rospy.init_node('student', anonymous=True, disable_signals=True)
-    yield
-    rospy.signal_shutdown('done')
-
-
-def wait_until(qtbot, predicate, timeout=60.0, what='condition'):
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if predicate():
-            return
-        qtbot.wait(100)
-    raise AssertionError('timed out waiting for %s' % what)
 
 
 def click(qtbot, widget, x, y, button=QtCore.Qt.LeftButton):
