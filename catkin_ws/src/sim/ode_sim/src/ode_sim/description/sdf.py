@@ -10,7 +10,8 @@ import xml.etree.ElementTree as ET
 
 from ode_sim.description.model import Light, Model, ModelError, Scene, World
 from ode_sim.description.resolve import ModelPaths
-from ode_sim.description.sdf_elements import parse_joint, parse_link, parse_plugin, read_nums
+from ode_sim.description.sdf_elements import parse_joint, parse_link, read_nums
+from ode_sim.description.sdf_sensors import parse_plugin
 from ode_sim.description.transforms import Pose
 from ode_sim.description.xmldoc import ParseContext, parse_xml, sdf_version, text_of
 

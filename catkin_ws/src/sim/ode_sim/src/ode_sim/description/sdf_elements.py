@@ -9,7 +9,7 @@ from ode_sim.description import materials, ogre
 from ode_sim.description.mesh import load_mesh
 from ode_sim.description.model import (Collision, Geometry, Inertial, Joint, Link, Material,
                                        ModelError, Surface, Visual)
-from ode_sim.description.sdf_sensors import parse_plugin, parse_sensor  # noqa: F401 (sdf.py)
+from ode_sim.description.sdf_sensors import parse_sensor
 from ode_sim.description.transforms import Pose
 from ode_sim.description.xmldoc import text_of
 

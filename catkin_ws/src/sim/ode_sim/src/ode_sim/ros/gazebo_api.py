@@ -35,8 +35,7 @@ from ode_sim.description.transforms import Pose
 from ode_sim.ros.convert import (entity_states_msg, fill_vector, ode_physics_msg,
                                  performance_metrics_msg, pose_from_msg, vector)
 from ode_sim.ros.gazebo_forces import ForceServices
-from ode_sim.ros.gazebo_lights import (LightServices, _attenuation_of,  # noqa: F401 (world_control)
-                                       light_attenuations)
+from ode_sim.ros.gazebo_lights import LightServices, light_attenuations
 from ode_sim.ros.gazebo_state import StateServices
 from ode_sim.ros.markers import SceneMarkers
 from ode_sim.ros.plugins.base import NO_WORK

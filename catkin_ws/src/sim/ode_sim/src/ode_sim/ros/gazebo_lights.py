@@ -13,7 +13,7 @@ from ode_sim.ros.convert import color_msg, pose_from_msg, rgba, xyz
 ATTENUATION_DEFAULT = (1.0, 1.0, 0.0)
 
 
-def _attenuation_of(light):
+def attenuation_of(light):
     vals = list(ATTENUATION_DEFAULT)
     att = light.find('attenuation')
     if att is not None:
@@ -43,7 +43,7 @@ def light_attenuations(world_file):
         return out
     for light in world.findall('light'):
         if light.get('name'):
-            out[light.get('name')] = _attenuation_of(light)
+            out[light.get('name')] = attenuation_of(light)
     for inc in world.findall('include'):
         uri = (inc.findtext('uri') or '').strip()
         try:
@@ -57,7 +57,7 @@ def light_attenuations(world_file):
             continue
         name = (inc.findtext('name') or '').strip() or light.get('name')
         if name:
-            out[name] = _attenuation_of(light)
+            out[name] = attenuation_of(light)
     return out
 
 

@@ -23,6 +23,7 @@ from ode_sim_msgs import srv as osrv
 from ode_sim.description import save_world, sdf
 from ode_sim.description.model import ModelError
 from ode_sim.ros.convert import pose_from_msg, pose_msg
+from ode_sim.ros.gazebo_lights import attenuation_of
 
 STATS_PERIOD = 0.2          # wall seconds between /gazebo/world_stats messages
 POSE_PERIOD = 1.0 / 60      # wall seconds between /gazebo/pose_info messages at most
@@ -195,7 +196,6 @@ def spawn_light(api, req):
                                              'found' % req.reference_frame)
         light.pose = ref[0] * pose_from_msg(req.initial_pose) * light.pose
         node.world.lights.append(light)
-        from ode_sim.ros.gazebo_api import _attenuation_of
-        api._attenuation[light.name] = _attenuation_of(light.element)
+        api._attenuation[light.name] = attenuation_of(light.element)
         api._lights_changed()
     return SpawnModelResponse(True, 'SpawnModel: Successfully spawned entity')
