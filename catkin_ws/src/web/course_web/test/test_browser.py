@@ -131,7 +131,10 @@ def stack(tmp_path_factory):
 
         def up():
             assert launch.alive(), 'browser.launch exited:\n' + launch.output()[-3000:]
-            return _port_open(web) and _port_open(bridge)
+            # the page's own server (its URL printed), not another process on a port that
+            # free_port() gave out (a node's XML-RPC server answers GET with 501)
+            return ('course_web: open http://localhost:%d/' % web) in launch.output() and \
+                _port_open(web) and _port_open(bridge)
         wait_for(up, 90, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
         req = urllib.request.Request('http://127.0.0.1:%d/vendor/roslib.min.js' % web,
                                      headers={'Authorization': 'token ' + TOKEN})

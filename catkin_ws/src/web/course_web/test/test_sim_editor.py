@@ -90,7 +90,10 @@ def ed(tmp_path_factory):
 
         def up():
             assert launch.alive(), 'sim_editor.launch exited:\n' + launch.output()[-3000:]
-            return _port_open(web) and _port_open(bridge)
+            # the page's own server (its URL printed), not another process on a port that
+            # free_port() gave out (a node's XML-RPC server answers GET with 501)
+            return ('course_web: open http://localhost:%d/' % web) in launch.output() and \
+                _port_open(web) and _port_open(bridge)
         wait_for(up, 120, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
         driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
         driver.set_script_timeout(30)
