@@ -76,9 +76,8 @@ void placeGeom(uintptr_t g, const Vec3& p, const Quat& q, bool offset) {
   }
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_core, m) {
+// assimp mesh import
+void bind_mesh_import(py::module& m) {
   // mesh files through assimp (description/mesh.py): a list of mesh instances (node and mesh
   // name, material index, positions (N,3) float64, normals (N,3) float32, uvs (N,2) float32 or
   // None, faces (M,3) int32) and a list of materials (dicts); RuntimeError: assimp's reason
@@ -123,7 +122,10 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(meshes, mats);
       },
       py::arg("path"));
-  m.doc() = "ode_sim's compiled step loop on libode (see engine/core/stepper.h)";
+}
+
+// ODE ids, trimesh geoms, the collision probe and TriMesh
+void bind_geoms(py::module& m) {
   m.def("body_world", [](uintptr_t b) { return num(dBodyGetWorld(as<dBodyID>(b))); });
   m.def("geom_body", [](uintptr_t g) { return num(dGeomGetBody(as<dGeomID>(g))); });
   m.def("body_joint", [](uintptr_t b, int i) { return num(dBodyGetJoint(as<dBodyID>(b), i)); });
@@ -185,34 +187,45 @@ PYBIND11_MODULE(_core, m) {
           [](const TriMesh& t, uintptr_t space) { return num(t.create(as<dSpaceID>(space))); },
           py::arg("space"));
   m.def("ode_config", []() { return std::string(dGetConfiguration()); });
+}
 
-  py::class_<Stepper>(m, "Stepper")
-      .def(py::init([](uintptr_t world, uintptr_t static_space) {
-        return new Stepper(as<dWorldID>(world), as<dSpaceID>(static_space));
-      }))
-      .def("set_step", &Stepper::setStep, py::arg("dt"), py::arg("use_step"),
-           py::arg("max_contacts"))
-      .def("add_geom",
-           [](Stepper& s, uintptr_t g, uintptr_t body, double mu1, double mu2, double kp, double kd,
-              std::optional<std::tuple<double, double, double>> fdir, double bounce,
-              double bounce_vel) {
-             Surface su{mu1, mu2, kp, kd, false, {0, 0, 0}, bounce, bounce_vel, as<dBodyID>(body)};
-             if (fdir) {
-               su.has_fdir = true;
-               su.fdir[0] = std::get<0>(*fdir);
-               su.fdir[1] = std::get<1>(*fdir);
-               su.fdir[2] = std::get<2>(*fdir);
-             }
-             s.addGeom(as<dGeomID>(g), su);
-           })
-      .def("remove_geom", [](Stepper& s, uintptr_t g) { s.removeGeom(as<dGeomID>(g)); })
-      .def("add_space",
-           [](Stepper& s, uintptr_t sp, const std::vector<uintptr_t>& b, bool self_collide) {
-             s.addSpace(as<dSpaceID>(sp), bodies(b), self_collide);
-           })
-      .def("remove_space", [](Stepper& s, uintptr_t sp) { s.removeSpace(as<dSpaceID>(sp)); })
-      .def("rouse", [](Stepper& s, uintptr_t sp) { s.rouse(as<dSpaceID>(sp)); })
-      .def("awake", [](const Stepper& s, uintptr_t sp) { return s.awake(as<dSpaceID>(sp)); })
+// the step loop: set-up, geoms, spaces (bind_stepper_state: joints, tracking, contacts)
+py::class_<Stepper> bind_stepper(py::module& m) {
+  auto stepper =
+      py::class_<Stepper>(m, "Stepper")
+          .def(py::init([](uintptr_t world, uintptr_t static_space) {
+            return new Stepper(as<dWorldID>(world), as<dSpaceID>(static_space));
+          }))
+          .def("set_step", &Stepper::setStep, py::arg("dt"), py::arg("use_step"),
+               py::arg("max_contacts"))
+          .def("add_geom",
+               [](Stepper& s, uintptr_t g, uintptr_t body, double mu1, double mu2, double kp,
+                  double kd, std::optional<std::tuple<double, double, double>> fdir, double bounce,
+                  double bounce_vel) {
+                 Surface su{
+                     mu1, mu2, kp, kd, false, {0, 0, 0}, bounce, bounce_vel, as<dBodyID>(body)};
+                 if (fdir) {
+                   su.has_fdir = true;
+                   su.fdir[0] = std::get<0>(*fdir);
+                   su.fdir[1] = std::get<1>(*fdir);
+                   su.fdir[2] = std::get<2>(*fdir);
+                 }
+                 s.addGeom(as<dGeomID>(g), su);
+               })
+          .def("remove_geom", [](Stepper& s, uintptr_t g) { s.removeGeom(as<dGeomID>(g)); })
+          .def("add_space",
+               [](Stepper& s, uintptr_t sp, const std::vector<uintptr_t>& b, bool self_collide) {
+                 s.addSpace(as<dSpaceID>(sp), bodies(b), self_collide);
+               })
+          .def("remove_space", [](Stepper& s, uintptr_t sp) { s.removeSpace(as<dSpaceID>(sp)); })
+          .def("rouse", [](Stepper& s, uintptr_t sp) { s.rouse(as<dSpaceID>(sp)); })
+          .def("awake", [](const Stepper& s, uintptr_t sp) { return s.awake(as<dSpaceID>(sp)); });
+  return stepper;
+}
+
+// the step loop: joint commands, tracked links, contacts, body reads
+void bind_stepper_state(py::class_<Stepper>& stepper) {
+  stepper
       .def("set_joints",
            [](Stepper& s, const std::vector<JointTuple>& joints) {
              std::vector<ActiveJoint> out;
@@ -301,7 +314,10 @@ PYBIND11_MODULE(_core, m) {
         }
         return out;
       });
+}
 
+// the compiled ray caster
+void bind_ray_scene(py::module& m) {
   py::class_<RayScene>(m, "RayScene",
                        "The shapes of a RayCaster (engine/raycore.py) in the compiled core")
       .def(py::init<int64_t>(), py::arg("shapes"))
@@ -386,4 +402,15 @@ PYBIND11_MODULE(_core, m) {
           py::arg("origins"), py::arg("directions"), py::arg("common"), py::arg("tmin"),
           py::arg("max_range"), py::arg("link_q"), py::arg("link_p"),
           py::arg("excluded") = py::none());
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "ode_sim's compiled step loop on libode (see engine/core/stepper.h)";
+  bind_mesh_import(m);
+  bind_geoms(m);
+  py::class_<Stepper> stepper = bind_stepper(m);
+  bind_stepper_state(stepper);
+  bind_ray_scene(m);
 }
