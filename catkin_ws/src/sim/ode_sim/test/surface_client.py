@@ -227,6 +227,32 @@ def _world_and_ghosts(out):
     out['state_ghost'] = [r.success, r.status_message]
 
 
+def mode_paused_markers():
+    """Paused from the start: a box spawned from a window reaches /gazebo/scene_markers without
+    a single step (sim time stays 0)."""
+    from visualization_msgs.msg import MarkerArray
+    wait_clock()
+    arrays = []
+    rospy.Subscriber('/gazebo/scene_markers', MarkerArray, arrays.append)
+    deadline = time.monotonic() + 60
+    while not arrays and time.monotonic() < deadline:
+        time.sleep(0.05)
+    before = len(arrays)
+    box = BOX.replace('<model name="box">', '<model name="pbox">').replace(
+        '</collision>', '</collision><visual name="v"><geometry><box><size>0.2 0.2 0.2</size>'
+                        '</box></geometry></visual>')
+    spawn = svc('/gazebo/spawn_sdf_model', gs.SpawnModel)
+    res = spawn(model_name='pbox', model_xml=box, initial_pose=pose(1, 0, 0.1))
+    assert res.success, res.status_message
+
+    def seen():
+        return any(m.ns.endswith('/pbox') for a in arrays[before:] for m in a.markers)
+    while not seen() and time.monotonic() < deadline + 60:
+        time.sleep(0.05)
+    props = svc('/gazebo/get_world_properties', gs.GetWorldProperties)()
+    return {'first_array': before > 0, 'seen': seen(), 'sim_time': props.sim_time}
+
+
 def mode_reconfigure():
     """rqt_reconfigure's path: dynamic_reconfigure's client on /gazebo."""
     from dynamic_reconfigure.client import Client
@@ -269,7 +295,7 @@ def mode_reconfigure():
 def main():
     rospy.init_node('surface_client', anonymous=True)
     mode = sys.argv[1]
-    out = {'graph': mode_graph, 'services': mode_services,
+    out = {'graph': mode_graph, 'services': mode_services, 'paused_markers': mode_paused_markers,
            'reconfigure': mode_reconfigure}[mode]()
     print(json.dumps(out))
 

@@ -78,6 +78,15 @@ def test_scene_markers_parameter_advertises_them_at_once(roscore, tmp_path):
     assert '/gazebo/scene_markers' in out['topics']
 
 
+def test_scene_markers_follow_a_spawn_while_paused(roscore, tmp_path):
+    p = launch(roscore, tmp_path, 'paused:=true', 'scene_markers:=true')
+    try:
+        out = client(roscore, p, 'paused_markers')
+    finally:
+        p.stop()
+    assert out == {'first_array': True, 'seen': True, 'sim_time': 0.0}
+
+
 def test_services_answer_with_gazebos_fields_and_texts(roscore, tmp_path):
     p = launch(roscore, tmp_path, 'paused:=true')
     try:

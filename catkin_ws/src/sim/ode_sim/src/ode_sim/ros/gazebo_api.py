@@ -116,6 +116,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         self._marker_version = -1
         self._next_marker = 0.0         # wall time of the next refresh
         node.step_hooks.append(self.after_step)
+        node.paused_hooks.append(self.while_paused)
         node.group_limits.append(self.next_update)
         node.before_step_hooks.append(self.before_step)
         self._watch = None
@@ -183,6 +184,13 @@ class GazeboApi(StateServices, ForceServices, LightServices):
             self.publish_metrics()
         else:
             self._metrics_last = None
+
+    def while_paused(self):
+        """Paused, nothing steps: a model spawned, deleted or moved from a window still
+        reaches the scene markers at once (as gzserver keeps sending scene changes to its
+        windows while paused)."""
+        if self.markers is not None and self.physics.version != self._marker_version:
+            self.publish_markers()
 
     def publish_metrics(self, wall=None):
         """gazebo_msgs/PerformanceMetrics once a wall second: the real-time factor over that

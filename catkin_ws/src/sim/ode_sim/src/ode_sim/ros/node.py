@@ -202,6 +202,10 @@ class SimNode(StepLoop):
         self.publish_clock(force=True)
         while not rospy.is_shutdown() and not self._stop.is_set():
             if self.paused:
+                if self.paused_hooks:
+                    with self.lock:
+                        for hook in self.paused_hooks:
+                            hook()
                 time.sleep(0.005)
                 self._resync = True
                 continue

@@ -21,6 +21,7 @@ class StepLoop:
         self._limits = []           # their next_update
         self.before_step_hooks = []  # callables run before each step (forces of the /gazebo API)
         self.step_hooks = []        # callables run after each step (model_states publisher ...)
+        self.paused_hooks = []      # callables run (under the lock) while paused, every 5 ms
         self.group_limits = []      # callables: when a hook next has work (see group_size)
 
     def set_plugins(self, plugins):
