@@ -14,7 +14,7 @@ from ode_sim_gui.scene import SceneModel
 from ode_sim_gui.view import View3D
 
 POLL_MS = 10                 # new poses looked for this often
-FRAME_MS = 25                # poses -> view at most this often (40 frames/s)
+FRAME_MS = 20                # poses -> view at most this often (50 frames/s)
 STATS_MS = 200
 ALIVE_MS = 1000
 
