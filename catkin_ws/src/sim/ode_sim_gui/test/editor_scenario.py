@@ -46,16 +46,7 @@ def toolbar_click(qtbot, win, action):
     qtbot.mouseClick(tb.widgetForAction(action), QtCore.Qt.LeftButton)
 
 
-def test_editing_in_the_window(qtbot, ros):
-    win = MainWindow(SimClient('/gazebo'))
-    qtbot.addWidget(win)
-    win.resize(1400, 900)
-    win.show()
-    qtbot.waitExposed(win)
-    wait_until(qtbot, lambda: 'ground_plane' in win.scene.model_names(), 120, 'the world')
-    win.view.camera.look_at((0.0, -7.0, 9.0), (0.0, 0.0, 0.0))
-    win.view.update()
-
+def place_sphere_and_light(qtbot, win):
     # toolbar: a sphere and a point light, each placed by a click on the ground
     toolbar_click(qtbot, win, win.act_shapes['sphere'])
     qtbot.mouseClick(win.view, QtCore.Qt.LeftButton, pos=px_of(win, 1.0, 0.0).toPoint())
@@ -78,6 +69,8 @@ def test_editing_in_the_window(qtbot, ros):
     assert (wp.lbl_name.text(), wp.lbl_mass.text(), wp.lbl_static.text(),
             wp.lbl_self_collide.text()) == ('unit_sphere', '1', 'false', 'false')
 
+
+def translate_rotate_follow_reset(qtbot, win):
     # Translate: drag it over the ground to (2.5, -1)
     toolbar_click(qtbot, win, win.act_modes['translate'])
     drag(win.view, line(win, (1.0, 0.0), (2.5, -1.0)))
@@ -104,6 +97,8 @@ def test_editing_in_the_window(qtbot, ros):
     assert not win.act_follow.isChecked()
     win.view.camera.look_at((0.0, -7.0, 9.0), (0.0, 0.0, 0.0))
 
+
+def draw_walls(qtbot, win):
     # the wall tool: two walls dragged on the ground, Enter -> one static model
     before = load_rgb(screenshot(os.environ['DISPLAY'], os.path.join(OUT, 'before_walls.png')))
     toolbar_click(qtbot, win, win.act_wall)
@@ -126,6 +121,20 @@ def test_editing_in_the_window(qtbot, ros):
         d = np.abs(after[cy - 4:cy + 5, cx - 4:cx + 5].astype(int)
                    - before[cy - 4:cy + 5, cx - 4:cx + 5].astype(int)).sum(axis=2)
         assert (d > 30).mean() > 0.5, 'the wall at (%g, %g) is not drawn' % (x, y)
+
+
+def test_editing_in_the_window(qtbot, ros):
+    win = MainWindow(SimClient('/gazebo'))
+    qtbot.addWidget(win)
+    win.resize(1400, 900)
+    win.show()
+    qtbot.waitExposed(win)
+    wait_until(qtbot, lambda: 'ground_plane' in win.scene.model_names(), 120, 'the world')
+    win.view.camera.look_at((0.0, -7.0, 9.0), (0.0, 0.0, 0.0))
+    win.view.update()
+    place_sphere_and_light(qtbot, win)
+    translate_rotate_follow_reset(qtbot, win)
+    draw_walls(qtbot, win)
 
     # a second window on the same simulator sees the same world; closing it changes nothing
     other = MainWindow(SimClient('/gazebo'))

@@ -47,19 +47,7 @@ def region(rgb, origin, px, half=6):
     return rgb[y - half:y + half + 1, x - half:x + half + 1]
 
 
-def test_student_builds_saves_a_scene(qtbot, ros):
-    win = MainWindow(SimClient('/gazebo'))
-    qtbot.addWidget(win)
-    win.resize(1400, 900)
-    win.show()
-    qtbot.waitExposed(win)
-    wait_until(qtbot, lambda: 'my_robot_model' in win.scene.model_names(), 120,
-               'the robot in the window')
-    # the camera looks at the scene from above, as a student would turn it
-    win.view.camera.look_at((0.0, -6.0, 7.0), (0.0, 0.0, 0.0))
-    win.view.update()
-    before, origin = shot(win, 'before.png')
-
+def insert_models(qtbot, win):
     # Insert tab: click a model, then click on the ground
     win.tabs.setCurrentWidget(win.insert_panel)
     lst = win.insert_panel.list
@@ -81,6 +69,8 @@ def test_student_builds_saves_a_scene(qtbot, ros):
     ground_click(qtbot, win, *PLACES['box'])
     wait_until(qtbot, lambda: 'unit_box' in win.scene.model_names(), 60, 'the box')
 
+
+def move_and_delete(qtbot, win):
     # move one: select the barrel by clicking on it, type a new x in the World tab
     win.tabs.setCurrentWidget(win.world_panel)
     wait_until(qtbot, lambda: win.scene.bounds('barrel') is not None, 30, 'barrel pose')
@@ -103,6 +93,9 @@ def test_student_builds_saves_a_scene(qtbot, ros):
     qtbot.keyClick(win.view, QtCore.Qt.Key_Delete)
     wait_until(qtbot, lambda: 'potted_plant' not in win.scene.model_names(), 30, 'plant deleted')
 
+
+def pause_and_step_100(qtbot, win):
+    """The step size of the world."""
     # pause, then step 100 steps: sim time advances by exactly 100 x step
     qtbot.mouseClick(win.btn_play, QtCore.Qt.LeftButton)
     wait_until(qtbot, lambda: win.client.stats is not None and win.client.stats.paused, 30,
@@ -133,7 +126,10 @@ def test_student_builds_saves_a_scene(qtbot, ros):
                'the bottom bar to show the iterations')
     qtbot.wait(1000)
     assert win.client.stats.iterations == it0 + 100             # and it stays paused
+    return step
 
+
+def check_screenshot(qtbot, win, before, origin):
     # screenshots: every inserted model is drawn (pixels differ from the empty scene there)
     win.select(None)
     win.view.camera.look_at((0.0, -6.0, 7.0), (0.0, 0.0, 0.0))
@@ -150,6 +146,8 @@ def test_student_builds_saves_a_scene(qtbot, ros):
     diff = np.abs(region(after, origin, px, 3) - region(before, origin, px, 3)).sum(axis=2)
     assert (diff > 60).mean() < 0.2
 
+
+def save_world(win, step):
     # File -> Save World As
     saved = os.path.join(OUT, 'my_scene.world')
     QtWidgets.QFileDialog.getSaveFileName = staticmethod(lambda *a, **k: (saved, ''))
@@ -161,4 +159,23 @@ def test_student_builds_saves_a_scene(qtbot, ros):
     assert 'potted_plant' not in expected
     with open(os.path.join(OUT, 'expected.json'), 'w') as f:
         json.dump({'world': saved, 'models': expected, 'step': step}, f)
+
+
+def test_student_builds_saves_a_scene(qtbot, ros):
+    win = MainWindow(SimClient('/gazebo'))
+    qtbot.addWidget(win)
+    win.resize(1400, 900)
+    win.show()
+    qtbot.waitExposed(win)
+    wait_until(qtbot, lambda: 'my_robot_model' in win.scene.model_names(), 120,
+               'the robot in the window')
+    # the camera looks at the scene from above, as a student would turn it
+    win.view.camera.look_at((0.0, -6.0, 7.0), (0.0, 0.0, 0.0))
+    win.view.update()
+    before, origin = shot(win, 'before.png')
+    insert_models(qtbot, win)
+    move_and_delete(qtbot, win)
+    step = pause_and_step_100(qtbot, win)
+    check_screenshot(qtbot, win, before, origin)
+    save_world(win, step)
     win.close()
