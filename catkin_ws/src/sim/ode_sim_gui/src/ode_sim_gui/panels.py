@@ -1,6 +1,7 @@
 """The left panel's tabs: World (the world tree, a model's pose editable in place, its
 properties from the simulator) and Insert (the model library with thumbnails)."""
 import math
+import threading
 
 from PyQt5 import QtCore, QtGui, QtWidgets
 
@@ -162,7 +163,9 @@ class WorldPanel(QtWidgets.QWidget):
 
 class InsertPanel(QtWidgets.QWidget):
     """The model library (ode_sim.description.library: the project's models, GAZEBO_MODEL_PATH,
-    ~/.gazebo/models, the database) with thumbnails; click an entry, then click on the ground."""
+    ~/.gazebo/models) with thumbnails, and on request the online model database (as Gazebo's
+    Insert tab lists it; its models are downloaded when inserted); click an entry, then click on
+    the ground."""
 
     def __init__(self, window, library=None):
         super().__init__(window)
@@ -173,21 +176,70 @@ class InsertPanel(QtWidgets.QWidget):
         self.list.setIconSize(QtCore.QSize(64, 64))
         self.list.itemClicked.connect(self._clicked)
         lay.addWidget(self.list)
+        self.btn_database = QtWidgets.QPushButton('Connect to the model database', self)
+        self.btn_database.clicked.connect(self.load_database)
+        lay.addWidget(self.btn_database)
+        self.status = QtWidgets.QLabel('', self)
+        self.status.setWordWrap(True)
+        lay.addWidget(self.status)
         self.entries = []
         self.error = None
         self._library = library
+        self._fetch = None              # (thread, result) while the database is fetched
         QtCore.QTimer.singleShot(0, self.load)
 
+    def _lib(self):
+        if self._library is None:
+            from ode_sim.description import library
+            self._library = library
+        return self._library
+
     def load(self):
-        lib = self._library
         try:
-            if lib is None:
-                from ode_sim.description import library as lib
-            self.entries = list(lib.list_models())
+            lib = self._lib()
+            entries = list(lib.list_models())
         except Exception as e:  # noqa: BLE001 - ImportError, ModelError, OSError: one line
             self.error = 'model library: %s' % e
             self.list.addItem(self.error)
             return
+        self._show(lib, entries)
+
+    def load_database(self):
+        """Fetch the model database's list in a thread (the window stays live); then its
+        models are listed under 'database', or one line says why it cannot be reached."""
+        if self._fetch is not None:
+            return
+        lib = self._lib()
+        result = {}
+
+        def work():
+            try:
+                result['entries'] = list(lib.list_models(database=True))
+            except Exception as e:  # noqa: BLE001 - unreachable, malformed: one line
+                result['error'] = str(e)
+        t = threading.Thread(target=work, name='model database', daemon=True)
+        self._fetch = (t, result)
+        self.btn_database.setEnabled(False)
+        self.status.setText('connecting to the model database ...')
+        t.start()
+        QtCore.QTimer.singleShot(100, self._database_done)
+
+    def _database_done(self):
+        t, result = self._fetch
+        if t.is_alive():
+            QtCore.QTimer.singleShot(100, self._database_done)
+            return
+        self._fetch = None
+        self.btn_database.setEnabled(True)
+        if 'error' in result:
+            self.status.setText('model database: %s' % result['error'])
+            return
+        n = sum(1 for e in result['entries'] if e.source == 'database')
+        self.status.setText('model database: %d models not on this machine' % n)
+        self._show(self._lib(), result['entries'])
+
+    def _show(self, lib, entries):
+        self.entries = entries
         self.list.clear()
         source = None
         for entry in self.entries:
@@ -202,11 +254,13 @@ class InsertPanel(QtWidgets.QWidget):
             it = QtWidgets.QListWidgetItem(entry.title or entry.name)
             it.setData(MODEL_ROLE, entry)
             it.setToolTip(entry.uri)
-            try:
-                png = lib.thumbnail(entry, size=64)
-                it.setIcon(QtGui.QIcon(png))
-            except Exception as e:  # noqa: BLE001 - a model that cannot be drawn: no icon
-                it.setToolTip('%s (no thumbnail: %s)' % (entry.uri, e))
+            if entry.source == 'database':      # not downloaded yet: no thumbnail to draw
+                it.setToolTip('%s (downloaded when inserted)' % entry.uri)
+            else:
+                try:
+                    it.setIcon(QtGui.QIcon(lib.thumbnail(entry, size=64)))
+                except Exception as e:  # noqa: BLE001 - a model that cannot be drawn: no icon
+                    it.setToolTip('%s (no thumbnail: %s)' % (entry.uri, e))
             self.list.addItem(it)
 
     def entry(self, name):
