@@ -7,7 +7,7 @@
 #define F_CPU 16000000UL
 
 extern avr_t *avr;
-double sim_ms(void);   /* simulated milliseconds since start */
+double sim_ms(void); /* simulated milliseconds since start */
 
 /* drive.c: the space scanner's drive (L298N, motors, encoders, MPU6050) */
 void drive_attach(void);
