@@ -227,6 +227,9 @@ class JointTrajectoryControllerTest(unittest.TestCase):
         c2.send_goal(goal_of(stale))
         self.assertEqual(GoalStatus.REJECTED, self.result_of(c2)[0])
         self.assertEqual(GoalStatus.SUCCEEDED, self.result_of(c1)[0])
+        # the result may arrive before the state message of the last sample (the same race as
+        # test_joint_reordering): wait for that message, then compare
+        self.wait_wall('the final state', lambda: abs(self.state().desired.positions[0] - 0.6) < EPS)
         self.assertAlmostEqual(0.6, self.state().desired.positions[0], delta=EPS)
 
     def test_cancel_stops_with_ramp(self):
