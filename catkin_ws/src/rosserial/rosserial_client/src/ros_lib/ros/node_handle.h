@@ -447,35 +447,29 @@ private:
     return true;
   }
 
+  // the values of the last response into the caller's array, when it holds as many as asked for
+  template <typename T, typename V>
+  bool copyParam(T *param, int length, const V *values, uint32_t count)
+  {
+    if (length != (int)count)
+    {
+      logwarn("Failed to get param: length mismatch");
+      return false;
+    }
+    for (int i = 0; i < length; i++)
+      param[i] = values[i];
+    return true;
+  }
+
 public:
   bool getParam(const char *name, int *param, int length = 1, int timeout = 1000)
   {
-    if (requestParam(name, timeout))
-    {
-      if (length == (int)req_param_resp.ints_length)
-      {
-        for (int i = 0; i < length; i++)
-          param[i] = req_param_resp.ints[i];
-        return true;
-      }
-      logwarn("Failed to get param: length mismatch");
-    }
-    return false;
+    return requestParam(name, timeout) && copyParam(param, length, req_param_resp.ints, req_param_resp.ints_length);
   }
 
   bool getParam(const char *name, float *param, int length = 1, int timeout = 1000)
   {
-    if (requestParam(name, timeout))
-    {
-      if (length == (int)req_param_resp.floats_length)
-      {
-        for (int i = 0; i < length; i++)
-          param[i] = req_param_resp.floats[i];
-        return true;
-      }
-      logwarn("Failed to get param: length mismatch");
-    }
-    return false;
+    return requestParam(name, timeout) && copyParam(param, length, req_param_resp.floats, req_param_resp.floats_length);
   }
 
   bool getParam(const char *name, char **param, int length = 1, int timeout = 1000)
@@ -497,17 +491,7 @@ public:
 
   bool getParam(const char *name, bool *param, int length = 1, int timeout = 1000)
   {
-    if (requestParam(name, timeout))
-    {
-      if (length == (int)req_param_resp.ints_length)
-      {
-        for (int i = 0; i < length; i++)
-          param[i] = req_param_resp.ints[i];
-        return true;
-      }
-      logwarn("Failed to get param: length mismatch");
-    }
-    return false;
+    return requestParam(name, timeout) && copyParam(param, length, req_param_resp.ints, req_param_resp.ints_length);
   }
 };
 
