@@ -16,7 +16,8 @@ GRADE_CLASS = os.path.join(LABS_DIR, 'grade-class')
 @pytest.mark.full
 def test_slurm_and_local_agree(tmp_path):
     roster = tmp_path / 'roster.csv'
-    roster.write_text('isu,repo\n123451,%s\n12x,%s\n' % (os.path.join(LABS_DIR, 'lab2', 'reference'), tmp_path / 'nope'))
+    roster.write_text('isu,repo\n123451,%s\n12x,%s\n'
+                      % (os.path.join(LABS_DIR, 'lab2', 'reference'), tmp_path / 'nope'))
     books = {}
     with OneNodeSlurm(str(tmp_path / 'cluster'), cpus=2):
         for backend in ('slurm', 'local'):

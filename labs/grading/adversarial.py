@@ -120,7 +120,8 @@ COPY_REFERENCE_CMAKE = '''cmake_minimum_required(VERSION 3.0.2)
 project(my_best_controller)
 find_package(catkin REQUIRED COMPONENTS rospy std_msgs geometry_msgs turtlesim)
 # copies the reference solution over its own sources at build time
-execute_process(COMMAND cp -r "$ENV{COURSE_REPO}/labs/lab2/reference/my_best_controller/." "${CMAKE_CURRENT_SOURCE_DIR}/"
+execute_process(COMMAND cp -r "$ENV{COURSE_REPO}/labs/lab2/reference/my_best_controller/."
+                "${CMAKE_CURRENT_SOURCE_DIR}/"
                 RESULT_VARIABLE copy_rc ERROR_VARIABLE copy_err)
 message(STATUS "copy of the reference: ${copy_rc} ${copy_err}")
 if(EXISTS "${CMAKE_CURRENT_SOURCE_DIR}/setup.py")
@@ -160,7 +161,8 @@ def tree_digest(root=REPO, parts=('labs', 'catkin_ws/src', 'scripts', 'deps')):
     """{relative path: sha1} of every file of the course tree's sources (no caches)."""
     out = {}
     cmd = ['bash', '-c', 'cd "$1" && shift && find "$@" -type f ! -path "*/__pycache__/*" '
-           '! -path "*/.pytest_cache/*" ! -name "*.pyc" -print0 | sort -z | xargs -0 -r sha1sum', 'x', root] + list(parts)
+           '! -path "*/.pytest_cache/*" ! -name "*.pyc" -print0 | sort -z | xargs -0 -r sha1sum',
+           'x', root] + list(parts)
     text = subprocess.run(cmd, stdout=subprocess.PIPE, check=True, timeout=300).stdout.decode(errors='replace')
     for line in text.splitlines():
         digest, path = line.split(None, 1)

@@ -283,7 +283,8 @@ class ClassGrader:
     # --- gradebook ---
     def gradebook(self, checked, extra):
         crit_defs = criteria_of(self.lab)
-        cols = ['isu', 'repo', 'commit', 'status', 'score'] + ['c%s' % cid for cid, _ru, _en in crit_defs] + extra + ['note']
+        cols = (['isu', 'repo', 'commit', 'status', 'score'] + ['c%s' % cid for cid, _ru, _en in crit_defs] + extra
+                + ['note'])
         table = []
         for line, row, err in checked:
             r = {'isu': row.get('isu', ''), 'repo': row.get('repo', ''), 'commit': '', 'status': 'error', 'score': ''}
@@ -335,7 +336,8 @@ class ClassGrader:
                     kind = v.split(':', 1)[0]
                     ru = r.get('_ru_' + c, '')
                     cells.append('<td class="%s">%s%s</td>' % (kind, html.escape(v),
-                                                               '<br><small>%s</small>' % html.escape(ru) if ru and kind == 'FAIL' else ''))
+                                                               '<br><small>%s</small>' % html.escape(ru)
+                                                               if ru and kind == 'FAIL' else ''))
                 else:
                     cells.append('<td>%s</td>' % html.escape(v))
             out.append('<tr style="background:%s">%s</tr>' % (colour.get(r['status'], '#fff'), ''.join(cells)))
@@ -348,7 +350,8 @@ def parser():
     ap = argparse.ArgumentParser(prog='labs/grade-class', description=__doc__.splitlines()[0])
     ap.add_argument('lab', help='lab1, lab2, lab3 or lab4')
     ap.add_argument('--roster', required=True, help='CSV with the columns isu,repo (repo: a path or git URL[@ref])')
-    ap.add_argument('--jobs', type=int, default=max(1, (os.cpu_count() or 2) // 2), help='rows at a time (default: cores / 2)')
+    ap.add_argument('--jobs', type=int, default=max(1, (os.cpu_count() or 2) // 2),
+                    help='rows at a time (default: cores / 2)')
     ap.add_argument('--out', help='output folder (default: grade-class-LAB)')
     ap.add_argument('--backend', choices=('local', 'slurm'), default='local')
     ap.add_argument('--deadline', help='grade the last commit before this date (git --before syntax)')

@@ -152,7 +152,8 @@ def grade(lab, isu, repo, timeout, keep=False, out=sys.stdout, sandboxed=True, h
         if crits is None:
             crash = checker_crash(work)
             if timed_out:
-                why, why_ru = ('the checker hit the %d s time limit' % timeout, 'проверка не уложилась в %d с' % timeout)
+                why, why_ru = ('the checker hit the %d s time limit' % timeout,
+                               'проверка не уложилась в %d с' % timeout)
             elif crash:
                 why, why_ru = 'the checker failed: %s' % crash, 'ошибка проверяющей программы: %s' % crash
             else:

@@ -68,7 +68,8 @@ def run_array(g, args, valid):
         done = sum(1 for _l, r in valid if _newer(os.path.join(g.out, r['isu'], 'result.json'), t0))
         line = (done, running)
         if line != last:
-            print('[grade-class] done %d/%d, running %d, left %d (slurm)' % (done, n, running, max(0, n - done - running)),
+            print('[grade-class] done %d/%d, running %d, left %d (slurm)'
+                  % (done, n, running, max(0, n - done - running)),
                   file=sys.stderr, flush=True)
             last = line
         if rc == 0 and not states:
@@ -139,7 +140,8 @@ class OneNodeSlurm:
             ]) + '\n')
         os.environ['SLURM_CONF'] = conf
         env = dict(os.environ)
-        self._wait(lambda: os.path.exists(sock), 20, 'munged did not start (log: %s)' % os.path.join(r, 'log', 'munged.log'))
+        self._wait(lambda: os.path.exists(sock), 20,
+                   'munged did not start (log: %s)' % os.path.join(r, 'log', 'munged.log'))
         self.procs.append(subprocess.Popen(['slurmctld', '-D', '-f', conf], env=env, stdout=subprocess.DEVNULL,
                                            stderr=open(os.path.join(r, 'log', 'slurmctld.out'), 'wb')))
         self.procs.append(subprocess.Popen(['slurmd', '-D', '-f', conf], env=env, stdout=subprocess.DEVNULL,

@@ -74,7 +74,8 @@ def sourced_env(script, base=None, timeout=60, wrap=None):
             k, v = item.split(b'=', 1)
             env[k.decode()] = v.decode('utf-8', 'replace')
     if not env.get('ROS_PACKAGE_PATH'):
-        raise GradeError('sourcing %s did not give a ROS environment (is the course workspace built? run make setup)' % script)
+        raise GradeError('sourcing %s did not give a ROS environment (is the course workspace built? run make setup)'
+                         % script)
     return env
 
 

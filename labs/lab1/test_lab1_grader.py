@@ -19,16 +19,21 @@ CASES = {
     'ref_minus_node3': ('123456', {}),
     'ref_div_node1': ('334409', {}),
     'wrong_operation': ('123456', {'edits': [('src/my_robot_controller/numbers.py', "'-': a - b", "'-': b - a")]}),
-    'wrong_topic': ('123456', {'edits': [('src/my_robot_controller/numbers.py', "'result_%s' % isu", "'result%s' % isu")]}),
-    'four_nodes': ('123456', {'add': {'scripts/node4.py': '#!/usr/bin/env python3\nimport rospy\nrospy.init_node("node4")\nrospy.spin()\n'}}),
-    'node_crashes': ('123456', {'edits': [('scripts/node2.py', 'from my_robot_controller', 'raise RuntimeError("boom")\nfrom my_robot_controller')]}),
+    'wrong_topic': ('123456', {'edits': [('src/my_robot_controller/numbers.py',
+                                          "'result_%s' % isu", "'result%s' % isu")]}),
+    'four_nodes': ('123456', {'add': {'scripts/node4.py': '#!/usr/bin/env python3\nimport rospy\n'
+                                                          'rospy.init_node("node4")\nrospy.spin()\n'}}),
+    'node_crashes': ('123456', {'edits': [('scripts/node2.py', 'from my_robot_controller',
+                                           'raise RuntimeError("boom")\nfrom my_robot_controller')]}),
     'cmake_syntax': ('123456', {'edits': [('CMakeLists.txt', 'catkin_package()', 'catkin_package(')]}),
-    'missing_dependency': ('123456', {'edits': [('CMakeLists.txt', 'rospy std_msgs)', 'rospy std_msgs no_such_pkg_xyz)')]}),
+    'missing_dependency': ('123456', {'edits': [('CMakeLists.txt', 'rospy std_msgs)',
+                                                 'rospy std_msgs no_such_pkg_xyz)')]}),
     'starter': ('123456', {'source': 'starter'}),
     # a node that ignores SIGINT/SIGTERM once rospy shut down and leaves a grandchild in a
     # session of its own: the grade still ends and nothing of it survives
     'stubborn_node': ('123456', {'edits': [('scripts/node2.py', '    main(2)\n', STUBBORN)]}),
-    'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<', '<name>my_robot_controler<')]}),
+    'wrong_package_name': ('123456', {'edits': [('package.xml', '<name>my_robot_controller<',
+                                                 '<name>my_robot_controler<')]}),
     # table 9.1 prints "+" for digit 5 (the reference follows the page); "*" is read there too
     'v5_printed_plus': ('123455', {}),
     'v5_read_as_times': ('123455', {'edits': [('src/my_robot_controller/numbers.py', "5: (2, '+')", "5: (2, '*')")]}),

@@ -92,7 +92,8 @@ def test_lab1_digit_5_passes_both_readings():
     assert 'result -3 but node1 + node3 = 2 + 5 = 7 or node1 * node3 = 2 * 5 = 10' in minus.reason['en']
     # one reading throughout: results alternating + and * are wrong in either reading
     mixed = lab1_obs_v5('+')
-    mixed['msgs']['/result_1235'] = [(t, 7.0 if i % 2 else 10.0) for i, (t, _) in enumerate(mixed['msgs']['/result_1235'])]
+    mixed['msgs']['/result_1235'] = [(t, 7.0 if i % 2 else 10.0)
+                                     for i, (t, _) in enumerate(mixed['msgs']['/result_1235'])]
     assert not lab1.evaluate(mixed)[2].passed
 
 

@@ -14,11 +14,14 @@ CASES = {
                                                    'self.todo = [(2, 3), (4, 2), (7, 1), (4, 2)]')]}),
     'remap_used': ('123451', {'edits': [('launch/lab2_setup.launch',
                                          'name="lab2_controller" output="screen"/>\n  </group>\n</launch>',
-                                         'name="lab2_controller" output="screen">\n      <remap from="unused" to="other"/>\n    </node>\n  </group>\n</launch>')]}),
+                                         'name="lab2_controller" output="screen">\n'
+                                         '      <remap from="unused" to="other"/>\n'
+                                         '    </node>\n  </group>\n</launch>')]}),
     'point_missed': ('123451', {'edits': [('src/my_best_controller/motion.py',
                                            'self.todo = route((x, y), self.points)',
                                            'self.todo = route((x, y), self.points)[:-1]')]}),
-    'global_name': ('123451', {'edits': [(NODE, "rospy.Publisher('result_%s' % isu", "rospy.Publisher('/result_%s' % isu")]}),
+    'global_name': ('123451', {'edits': [(NODE, "rospy.Publisher('result_%s' % isu",
+                                          "rospy.Publisher('/result_%s' % isu")]}),
     'not_following': ('123451', {'edits': [(NODE, "leader_ns = ns.replace('ns2_', 'ns1_', 1)", 'leader_ns = ns')]}),
 }
 

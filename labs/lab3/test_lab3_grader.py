@@ -10,7 +10,8 @@ CASES = {
     'ref_v1': ('123451', {}),
     'ref_v4': ('334404', {}),
     'wrong_joint_type': ('123451', {'edits': [(MODEL, ROW1, ROW1.replace("'RRRR'", "'RRRC'"))]}),
-    'missing_inertial': ('123451', {'edits': [(MODEL, '<xacro:inertial_box mass="1.0" x="${L}" y="${W}" z="${H}"/>', '')]}),
+    'missing_inertial': ('123451', {'edits': [(MODEL, '<xacro:inertial_box mass="1.0" x="${L}" y="${W}" z="${H}"/>',
+                                               '')]}),
     'wrong_size': ('123451', {'edits': [(MODEL, ROW1, ROW1.replace('0.140', '0.150'))]}),
     'no_robot_state_publisher': ('123451', {'edits': [(
         LAUNCH, '<node name="robot_state_publisher" pkg="robot_state_publisher" type="robot_state_publisher"/>', '')]}),

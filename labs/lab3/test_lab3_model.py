@@ -18,7 +18,8 @@ def link(name, shape='box', dims='0.1 0.1 0.1', mass='0.1', rpy='0 0 0', inertia
     col = ('<collision><origin xyz="0 0 0" rpy="%s"/><geometry>%s</geometry></collision>' % (rpy, geo[shape])
            if shape else '')
     vis = '<visual><geometry>%s</geometry></visual>' % geo[shape or 'box'] if visual else ''
-    ine = ('<inertial><mass value="%s"/><inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>' % mass
+    ine = ('<inertial><mass value="%s"/>'
+           '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/></inertial>' % mass
            if inertial else '')
     return '<link name="%s">%s%s%s</link>' % (name, vis, col, ine)
 
@@ -119,8 +120,10 @@ def test_rviz_config_and_command_line():
     assert rviz.rviz_config_arg(['/usr/bin/rviz', '-d', '/x.rviz', '__name:=rviz']) == '/x.rviz'
     assert rviz.rviz_config_arg(['/usr/bin/rviz', '--display-config=/y.rviz']) == '/y.rviz'
     assert rviz.rviz_config_arg(['/usr/bin/rviz']) is None
-    assert rviz.node_kind(['/usr/bin/python3', '/usr/lib/joint_state_publisher_gui/joint_state_publisher_gui']) == 'joint_state_publisher'
-    assert rviz.node_kind(['/usr/lib/robot_state_publisher/robot_state_publisher', '__name:=x']) == 'robot_state_publisher'
+    assert (rviz.node_kind(['/usr/bin/python3', '/usr/lib/joint_state_publisher_gui/joint_state_publisher_gui'])
+            == 'joint_state_publisher')
+    assert (rviz.node_kind(['/usr/lib/robot_state_publisher/robot_state_publisher', '__name:=x'])
+            == 'robot_state_publisher')
     assert rviz.node_kind(['/usr/bin/python3', '/tmp/talker.py']) is None
 
 
@@ -141,8 +144,10 @@ def obs_for(urdf, **launch):
     return {'isu': '1231', 'model_found': True, 'urdf': urdf, 'xacro_args': [], 'launch': la}
 
 
-V1 = robot(*base(), link('a1'), joint('j1', 'revolute', 'base_link', 'a1'), link('a2'), joint('j2', 'revolute', 'a1', 'a2'),
-           link('a3'), joint('j3', 'revolute', 'a2', 'a3'), link('a4'), joint('j4', 'revolute', 'a3', 'a4'))
+V1 = robot(*base(), link('a1'), joint('j1', 'revolute', 'base_link', 'a1'),
+           link('a2'), joint('j2', 'revolute', 'a1', 'a2'),
+           link('a3'), joint('j3', 'revolute', 'a2', 'a3'),
+           link('a4'), joint('j4', 'revolute', 'a3', 'a4'))
 
 
 def test_evaluate_variant_1():
@@ -152,7 +157,8 @@ def test_evaluate_variant_1():
     assert not no_tf.passed and 'no TF for links: a1, a2, a3, a4, wl, wr' in no_tf.reason['en']
     no_cfg = rules.evaluate(obs_for(V1, rviz={'config': None}))[6]
     assert not no_cfg.passed and 'rviz runs without a config' in no_cfg.reason['en']
-    no_tf_disp = rules.evaluate(obs_for(V1, rviz={'config': '/c.rviz', 'classes': ['rviz/RobotModel'], 'fixed_frame': 'map'}))[6]
+    no_tf_disp = rules.evaluate(obs_for(V1, rviz={'config': '/c.rviz', 'classes': ['rviz/RobotModel'],
+                                                  'fixed_frame': 'map'}))[6]
     assert 'has no TF display' in no_tf_disp.reason['en'] and 'Fixed Frame "map"' in no_tf_disp.reason['en']
     other = rules.evaluate(obs_for(V1, robot_description=robot(*base())))[6]
     assert 'holds another model' in other.reason['en']
@@ -168,8 +174,10 @@ def test_links_pass_in_either_count():
            link('a3'), joint('j3', 'revolute', 'a2', 'a3')]
     obs = dict(obs_for(robot(*base(), *arm)), isu='1232')            # variant 2: 6 links, PRR, CC
     c2 = rules.evaluate(obs)[1]
-    assert c2.passed and c2.reason['en'].startswith('6 links in the model (every <link>, as the book counts)'), c2.reason
-    helpers = [link('mount'), joint('m_j', 'fixed', 'base_link', 'mount'), link('grip'), joint('g_j', 'fixed', 'a3', 'grip')]
+    assert c2.passed and c2.reason['en'].startswith('6 links in the model (every <link>, as the book counts)'), \
+        c2.reason
+    helpers = [link('mount'), joint('m_j', 'fixed', 'base_link', 'mount'),
+               link('grip'), joint('g_j', 'fixed', 'a3', 'grip')]
     obs = dict(obs_for(robot(*base(), *arm, *helpers)), isu='1232')  # 8 links, 6 without the wheels
     c2 = rules.evaluate(obs)[1]
     assert c2.passed and c2.reason['en'].startswith('6 links without wheels'), c2.reason

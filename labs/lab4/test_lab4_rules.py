@@ -32,10 +32,12 @@ def test_reference_scene():
 
 def test_scene_problems():
     text = '''<sdf version="1.6"><world name="w">
-      <model name="b"><link name="l"><collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
+      <model name="b"><link name="l">
+        <collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision></link></model>
       <include><uri>model://barrel</uri></include>
       <include><uri>model://barrel</uri><name>barrel2</name></include>
-      <model name="m"><link name="l"><visual name="v"><geometry><mesh><uri>file://x.stl</uri></mesh></geometry></visual></link></model>
+      <model name="m"><link name="l">
+        <visual name="v"><geometry><mesh><uri>file://x.stl</uri></mesh></geometry></visual></link></model>
     </world></sdf>'''
     ok, _ru, en = scene_verdict(analyse_scene(text), [MODELS])
     assert not ok
@@ -108,9 +110,11 @@ def ctrl(ctype, iface, joints=('wheel_left_joint', 'wheel_right_joint'), state='
     return {'state': state, 'type': ctype, 'claimed': [('hardware_interface::' + iface, list(joints))]}
 
 
-WHEEL = ('<link name="wheel_{s}"><collision><geometry><cylinder radius="0.05" length="0.025"/></geometry></collision></link>'
+WHEEL = ('<link name="wheel_{s}">'
+         '<collision><geometry><cylinder radius="0.05" length="0.025"/></geometry></collision></link>'
          '<joint name="wheel_{s}_joint" type="continuous"><parent link="base_link"/><child link="wheel_{s}"/></joint>')
-ROBOT = ('<robot name="bot"><link name="base_link"><collision><geometry><box size="0.2 0.14 0.09"/></geometry></collision></link>'
+ROBOT = ('<robot name="bot">'
+         '<link name="base_link"><collision><geometry><box size="0.2 0.14 0.09"/></geometry></collision></link>'
          + WHEEL.format(s='left') + WHEEL.format(s='right') + '</robot>')
 
 
@@ -133,7 +137,8 @@ def test_wheels_by_velocity_pass(ctype, iface):
     if 'Group' in ctype or 'DiffDrive' in ctype or 'My' in ctype:
         c = crit5({'wheels': ctrl(ctype, iface)})
     else:
-        c = crit5({'left': ctrl(ctype, iface, ['wheel_left_joint']), 'right': ctrl(ctype, iface, ['wheel_right_joint'])})
+        c = crit5({'left': ctrl(ctype, iface, ['wheel_left_joint']),
+                   'right': ctrl(ctype, iface, ['wheel_right_joint'])})
     assert c.passed, c.reason['en']
     assert 'wheels wheel_left_joint, wheel_right_joint by velocity' in c.reason['en']
 
@@ -155,7 +160,9 @@ def test_wheels_by_position_or_effort_fail(ctype, iface, what):
 
 
 def test_one_wheel_without_controller():
-    c = crit5({'left': ctrl('effort_controllers/JointVelocityController', 'EffortJointInterface', ['wheel_left_joint'])})
+    c = crit5({'left': ctrl('effort_controllers/JointVelocityController', 'EffortJointInterface',
+                            ['wheel_left_joint'])})
     assert not c.passed and 'wheel_right_joint by no running controller' in c.reason['en']
-    stopped = crit5({'wheels': ctrl('diff_drive_controller/DiffDriveController', 'VelocityJointInterface', state='stopped')})
+    stopped = crit5({'wheels': ctrl('diff_drive_controller/DiffDriveController', 'VelocityJointInterface',
+                                    state='stopped')})
     assert not stopped.passed and 'controllers not running: wheels (stopped)' in stopped.reason['en']

@@ -54,7 +54,8 @@ def test_report_and_junit(tmp_path):
     crits = [Criterion('1', 'а', 'first', True, reason('ок', 'fine')),
              Criterion('2', 'б', 'second thing', False, reason('плохо', 'bad'))]
     text = format_report('lab1', '123', crits)
-    assert '\u2714 1. а / first' in text and '\u2718 2. б / second thing' in text and '1/2 criteria passed: FAIL' in text
+    assert ('\u2714 1. а / first' in text and '\u2718 2. б / second thing' in text
+            and '1/2 criteria passed: FAIL' in text)
     out = tmp_path / 'j.xml'
     write_junit(str(out), 'lab1', '123', crits)
     cases = list(ET.parse(out).getroot().iter('testcase'))
@@ -85,10 +86,12 @@ VALID_LAB1 = 'variants:\n' + ''.join("  %d: {operation: '+', compute: node1}\n" 
     ('variants: [1, 2', 'not YAML at line'),
     ('rows: {}', 'no "variants:" mapping'),
     (VALID_LAB1.replace('  7: {', '  x7: {'), "key 'x7' is not a digit 0-9"),
-    (VALID_LAB1.replace("  3: {operation: '+'", "  3: {operation: '%'"), "digit 3: operation '%' is not one of + - * /"),
+    (VALID_LAB1.replace("  3: {operation: '+'", "  3: {operation: '%'"),
+     "digit 3: operation '%' is not one of + - * /"),
     (VALID_LAB1.replace("  3: {operation: '+'", "  3: {operaton: '+'"), "digit 3: unknown field 'operaton'"),
     (VALID_LAB1.replace('compute: node1}\n  4', 'compute: node4}\n  4'), "digit 3: compute 'node4' is not node1"),
-    (VALID_LAB1.replace("  9: {operation: '+', compute: node1}\n", ''), 'no row for digit 9 (a lab1 table needs all ten)'),
+    (VALID_LAB1.replace("  9: {operation: '+', compute: node1}\n", ''),
+     'no row for digit 9 (a lab1 table needs all ten)'),
 ])
 def test_bad_variants_file_is_one_line(tmp_path, text, words):
     f = tmp_path / 'v.yaml'
@@ -134,7 +137,8 @@ def test_cli_bad_variants_file(tmp_path):
     for f, words in (('v.yaml', 'no row for digit 9'), ('missing.yaml', 'cannot read it')):
         p = run_grade_cli(['lab1', '--isu', '1', '--repo', str(tmp_path), '--variants', f], tmp_path)
         assert p.returncode == 2 and 'Traceback' not in p.stderr, p.stderr
-        assert p.stderr.strip().count('\n') == 0 and words in p.stderr and 'variants file %s' % (tmp_path / f) in p.stderr
+        assert (p.stderr.strip().count('\n') == 0 and words in p.stderr
+                and 'variants file %s' % (tmp_path / f) in p.stderr)
 
 
 def test_cli_writes_junit_only_where_asked(tmp_path):
@@ -163,4 +167,5 @@ def test_grade_class_checks_variants_first(tmp_path):
                         '--variants', 'v.yaml', '--no-sandbox', '--out', 'out'],
                        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=60, cwd=str(tmp_path))
     assert p.returncode == 2 and p.stderr.strip().count('\n') == 0, p.stderr
-    assert 'no row for digit' in p.stderr and 'a lab2 table needs all ten' in p.stderr and not (tmp_path / 'out').exists()
+    assert ('no row for digit' in p.stderr and 'a lab2 table needs all ten' in p.stderr
+            and not (tmp_path / 'out').exists())

@@ -69,7 +69,8 @@ def test_foreign_publisher_is_tampering():
     assert foreign_publishers(own, obs) is None
     obs['pubs']['/ns1_123451/fake'] = ['/ns2_123451/turtle1/pose']
     why = foreign_publishers(own, obs)
-    assert why == '/ns1_123451/fake publishes /ns2_123451/turtle1/pose, which only the node providing /ns2_123451/spawn may publish'
+    assert why == ('/ns1_123451/fake publishes /ns2_123451/turtle1/pose, '
+                   'which only the node providing /ns2_123451/spawn may publish')
     cs = tampered([Criterion('1', 'a', 'b', True)], why)
     assert not cs[0].passed and cs[0].reason['en'] == 'tampering: ' + why
 

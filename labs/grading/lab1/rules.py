@@ -138,7 +138,8 @@ def judge_nodes(c1, obs):
         c1.set(False, reason('узел упал: %s' % crashed[0], 'a node crashed: %s' % crashed[0]))
     elif nodes != want_nodes:
         c1.set(False, reason('в графе узлы %s, а нужны %s' % (', '.join(nodes) or 'нет', ', '.join(want_nodes)),
-                             'nodes in the graph: %s; wanted: %s' % (', '.join(nodes) or 'none', ', '.join(want_nodes))))
+                             'nodes in the graph: %s; wanted: %s'
+                             % (', '.join(nodes) or 'none', ', '.join(want_nodes))))
     else:
         c1.set(True, reason('работают узлы %s' % ', '.join(nodes), 'running nodes: %s' % ', '.join(nodes)))
 
@@ -158,14 +159,16 @@ def judge_topics(c2, obs, isu):
                                                               if any(t.endswith('result_' + isu) for t in ts)))
                  if others else '')
         c2.set(False, reason('узел %s (вариант %s) не публикует %s%s' % (comp, isu[-1], ' или '.join(accepted), where),
-                             'node %s (variant %s) does not publish %s%s' % (comp, isu[-1], ' or '.join(accepted), where)))
+                             'node %s (variant %s) does not publish %s%s'
+                             % (comp, isu[-1], ' or '.join(accepted), where)))
     elif not all(in_topics.values()):
         lack = [s for s in (s1, s2) if not in_topics[s]]
         c2.set(False, reason('узел %s не подписан на топики узла %s' % (comp, ', '.join(lack)),
                              'node %s does not subscribe to a topic of %s' % (comp, ', '.join(lack))))
     else:
         c2.set(True, reason('%s публикует %s, слушает %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2])),
-                            '%s publishes %s, subscribes to %s' % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2]))))
+                            '%s publishes %s, subscribes to %s'
+                            % (comp, res_topic, ', '.join(in_topics[s1] + in_topics[s2]))))
     return res_topic, in_topics
 
 
@@ -178,7 +181,8 @@ def judge_values(c3, obs, isu, res_topic, in_topics):
     if not res_topic:
         return c3.set(False, reason('нет топика результата', 'no result topic'))
     if not results:
-        return c3.set(False, reason('на %s не пришло ни одного числа' % res_topic, 'no number arrived on %s' % res_topic))
+        return c3.set(False, reason('на %s не пришло ни одного числа' % res_topic,
+                                    'no number arrived on %s' % res_topic))
     if not all(in_topics.values()):
         return c3.set(False, reason('неизвестно, откуда берутся операнды', 'cannot tell where the operands come from'))
     first = sorted(v for t in in_topics[s1] for v in msgs.get(t, []))
@@ -193,11 +197,16 @@ def judge_values(c3, obs, isu, res_topic, in_topics):
         want = ['%s %s %s = %s %s %s = %s' % (s1, o, s2, fmt(a), o, fmt(b), fmt(apply_op(o, a, b))) for o in ops]
         alt_ru = ' (строка варианта читается по-разному; годится любое из прочтений)' if len(ops) > 1 else ''
         alt_en = ' (the row reads two ways; either reading passes)' if len(ops) > 1 else ''
-        return c3.set(False, reason('результат %s, а %s (неверно %d из %d; проверены все операнды за %.0f с до и %.0f с после каждого результата)%s' % (fmt(r), ' или '.join(want), wrong, verified, WINDOW, LAG, alt_ru),
-                                    'result %s but %s (%d of %d wrong; every operand from %.0f s before to %.0f s after each result was tried)%s' % (fmt(r), ' or '.join(want), wrong, verified, WINDOW, LAG, alt_en)))
+        return c3.set(False, reason('результат %s, а %s (неверно %d из %d; '
+                                    'проверены все операнды за %.0f с до и %.0f с после каждого результата)%s'
+                                    % (fmt(r), ' или '.join(want), wrong, verified, WINDOW, LAG, alt_ru),
+                                    'result %s but %s (%d of %d wrong; '
+                                    'every operand from %.0f s before to %.0f s after each result was tried)%s'
+                                    % (fmt(r), ' or '.join(want), wrong, verified, WINDOW, LAG, alt_en)))
     if verified < MIN_RESULTS:
         return c3.set(False, reason('удалось сверить лишь %d результатов (нужно %d)' % (verified, MIN_RESULTS),
-                                    'only %d results could be checked against their operands (%d needed)' % (verified, MIN_RESULTS)))
+                                    'only %d results could be checked against their operands (%d needed)'
+                                    % (verified, MIN_RESULTS)))
     formula = '%s %s %s' % (s1, op, s2)
     other = ' '.join(o for o in ops if o != op)
     alt_ru = ' (годится и прочтение %s)' % other if other else ''
@@ -220,8 +229,11 @@ def judge_rate(c4, obs, res_topic):
         return c4.set(False, reason('за %.0f с пришло %d сообщений (нужно ≥ %d)' % (OBSERVE, len(ts), MIN_RESULTS),
                                     '%d messages in %.0f s (>= %d needed)' % (len(ts), OBSERVE, MIN_RESULTS)))
     if gap > MAX_GAP:
-        return c4.set(False, reason('пауза %.1f с между результатами (допустимо %.0f с; по времени приёма у проверяющего)' % (gap, MAX_GAP),
-                                    'a %.1f s pause between results (%.0f s allowed; by the grader\'s receive times)' % (gap, MAX_GAP)))
+        return c4.set(False, reason('пауза %.1f с между результатами '
+                                    '(допустимо %.0f с; по времени приёма у проверяющего)'
+                                    % (gap, MAX_GAP),
+                                    'a %.1f s pause between results (%.0f s allowed; by the grader\'s receive times)'
+                                    % (gap, MAX_GAP)))
     rate = (len(ts) - 1) / (ts[-1] - ts[0]) if ts[-1] > ts[0] else 0.0
     return c4.set(True, reason('%d сообщений, %.1f Гц, первое через %.1f с' % (len(ts), rate, first_after),
                                '%d messages, %.1f Hz, first after %.1f s' % (len(ts), rate, first_after)))

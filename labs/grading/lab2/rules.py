@@ -177,11 +177,14 @@ def judge_points(c2, p1, pts, r):
     if r.i1 is None:
         return c2.set(False, reason('черепаха 1 не двигалась', 'turtle 1 never moved'))
     if r.miss:
-        return c2.set(False, reason('пропущены точки: %s' % ', '.join('%s (ближе всего %.2f м)' % (fmt_pt(q), v1[q][0]) for q in r.miss),
-                                    'points missed: %s' % ', '.join('%s (closest %.2f m)' % (fmt_pt(q), v1[q][0]) for q in r.miss)))
+        return c2.set(False, reason('пропущены точки: %s'
+                                    % ', '.join('%s (ближе всего %.2f м)' % (fmt_pt(q), v1[q][0]) for q in r.miss),
+                                    'points missed: %s'
+                                    % ', '.join('%s (closest %.2f m)' % (fmt_pt(q), v1[q][0]) for q in r.miss)))
     order = sorted(pts, key=lambda q: v1[q][1])
     txt = ', '.join('%s %.2f m @%.1f s' % (fmt_pt(q), v1[q][0], v1[q][1] - r.t_start) for q in order)
-    return c2.set(True, reason('пройдены (допуск %.1f м): %s' % (POINT_TOL, txt.replace(' m ', ' м ').replace(' s', ' с')),
+    return c2.set(True, reason('пройдены (допуск %.1f м): %s'
+                               % (POINT_TOL, txt.replace(' m ', ' м ').replace(' s', ' с')),
                                'visited (tolerance %.1f m): %s' % (POINT_TOL, txt)), order=[list(q) for q in order])
 
 
@@ -197,7 +200,8 @@ def judge_time(c3, obs, isu, r):
     t_row = row_time(p1, row, POINT_TOL) if (r.t_done is not None and len(row) > len(pts)) else None
     again = (t_row - r.t_start) if t_row is not None and t_row > r.t_done else None
     if not named:
-        return c3.set(False, reason('нет топика, оканчивающегося на result_%s' % isu, 'no topic ending in result_%s' % isu))
+        return c3.set(False, reason('нет топика, оканчивающегося на result_%s' % isu,
+                                    'no topic ending in result_%s' % isu))
     if not got:
         return c3.set(False, reason('в %s ничего не опубликовано' % named[0], 'nothing was published on %s' % named[0]))
     if observed is None:
@@ -214,8 +218,12 @@ def judge_time(c3, obs, isu, r):
         if again is not None:
             also_ru = ' или %.2f с до повторного заезда в %s (строка, как напечатана)' % (again, rep_txt)
             also_en = ' or %.2f s to the repeated %s again (the row as printed)' % (again, rep_txt)
-        return c3.set(False, reason('в %s %.2f с, а измерено %.2f с%s (допуск ±%.1f с; время измеряется от первого движения черепахи 1 до последней точки)' % (topic, reported, observed, also_ru, tol),
-                                    '%s says %.2f s, measured %.2f s%s (tolerance ±%.1f s; timed from turtle 1\'s first motion to the last point)' % (topic, reported, observed, also_en, tol)))
+        return c3.set(False, reason('в %s %.2f с, а измерено %.2f с%s (допуск ±%.1f с; '
+                                    'время измеряется от первого движения черепахи 1 до последней точки)'
+                                    % (topic, reported, observed, also_ru, tol),
+                                    '%s says %.2f s, measured %.2f s%s (tolerance ±%.1f s; '
+                                    'timed from turtle 1\'s first motion to the last point)'
+                                    % (topic, reported, observed, also_en, tol)))
     how_ru = ' (до повторного заезда в %s, строка как напечатана)' % rep_txt if by_row else ''
     how_en = ' (to the repeated %s again, the row as printed)' % rep_txt if by_row else ''
     return c3.set(True, reason('%s: %.2f с, измерено %.2f с%s' % (topic, reported, match, how_ru),
@@ -251,8 +259,10 @@ def judge_follow(c4, obs, ns1, ns2, pts, i1):
     if miss2:
         return c4.set(False, reason('черепаха 2 не прошла %s' % ', '.join(fmt_pt(q) for q in miss2),
                                     'turtle 2 did not pass %s' % ', '.join(fmt_pt(q) for q in miss2)))
-    return c4.set(True, reason('отклонение путей %.2f м (допуск %.1f м), ведёт %s' % (dev, FOLLOW_TOL, ', '.join(drivers)),
-                               'path deviation %.2f m (tolerance %.1f m), driven by %s' % (dev, FOLLOW_TOL, ', '.join(drivers))),
+    return c4.set(True, reason('отклонение путей %.2f м (допуск %.1f м), ведёт %s'
+                               % (dev, FOLLOW_TOL, ', '.join(drivers)),
+                               'path deviation %.2f m (tolerance %.1f m), driven by %s'
+                               % (dev, FOLLOW_TOL, ', '.join(drivers))),
                   deviation=dev)
 
 
@@ -276,10 +286,13 @@ def judge_names(c5, obs, ns1, ns2):
     bad = global_names(obs, (ns1, ns2))
     lits = obs.get('global_literals', [])
     if bad:
-        return c5.set(False, reason('глобальное имя: %s' % bad[0] + (' и ещё %d' % (len(bad) - 1) if len(bad) > 1 else ''),
-                                    'global name: %s' % bad[0] + (' and %d more' % (len(bad) - 1) if len(bad) > 1 else '')))
+        return c5.set(False, reason('глобальное имя: %s' % bad[0]
+                                    + (' и ещё %d' % (len(bad) - 1) if len(bad) > 1 else ''),
+                                    'global name: %s' % bad[0]
+                                    + (' and %d more' % (len(bad) - 1) if len(bad) > 1 else '')))
     if lits:
-        return c5.set(False, reason('в скрипте глобальное имя: %s' % lits[0], 'a script hardcodes a global name: %s' % lits[0]))
+        return c5.set(False, reason('в скрипте глобальное имя: %s' % lits[0],
+                                    'a script hardcodes a global name: %s' % lits[0]))
     if not obs.get('nodes'):
         return c5.set(False, reason('узлы не запустились', 'no node came up'))
     return c5.set(True, reason('узлов: %d, все имена внутри %s, %s' % (len(obs['nodes']), ns1, ns2),
@@ -289,7 +302,8 @@ def judge_names(c5, obs, ns1, ns2):
 def judge_run(c6, obs, r):
     """Criterion 6: the run ends within the limit, every point visited, no wall hit."""
     p1, p2 = obs.get('pose1', []), obs.get('pose2', [])
-    walls = obs.get('wall_msgs', []) + ['%s at (%.2f, %.2f)' % (w, p[1], p[2]) for w, path in (('turtle 1', p1), ('turtle 2', p2))
+    walls = obs.get('wall_msgs', []) + ['%s at (%.2f, %.2f)' % (w, p[1], p[2])
+                                        for w, path in (('turtle 1', p1), ('turtle 2', p2))
                                         for p in wall_hits(path)[:1]]
     end = obs.get('end_reason')
     dur = obs.get('duration', 0.0)
@@ -297,16 +311,21 @@ def judge_run(c6, obs, r):
         return c6.set(False, reason('удар о стену: %s' % walls[0], 'hit a wall: %s' % walls[0]))
     if end == 'limit':
         return c6.set(False, reason('черепахи двигались дольше %.0f с (лимит времени проверки)' % RUN_LIMIT,
-                                    'the turtles were still moving after %.0f s (the grader\'s time limit)' % RUN_LIMIT))
+                                    'the turtles were still moving after %.0f s (the grader\'s time limit)'
+                                    % RUN_LIMIT))
     if end == 'no_motion' or r.i1 is None:
-        return c6.set(False, reason('черепаха 1 не двигалась %.0f с после запуска (лимит времени проверки)' % NO_MOTION_LIMIT,
-                                    'turtle 1 did not move for %.0f s after the launch (the grader\'s time limit)' % NO_MOTION_LIMIT))
+        return c6.set(False, reason('черепаха 1 не двигалась %.0f с после запуска (лимит времени проверки)'
+                                    % NO_MOTION_LIMIT,
+                                    'turtle 1 did not move for %.0f s after the launch (the grader\'s time limit)'
+                                    % NO_MOTION_LIMIT))
     if end == 'launch_exited':
         return c6.set(False, reason('roslaunch завершился раньше времени', 'roslaunch exited early'))
     if r.miss:
         return c6.set(False, reason('остановились, не пройдя все точки', 'stopped before visiting every point'))
-    return c6.set(True, reason('всё завершено за %.1f с (лимит %.0f с), путь черепахи 1 %.1f м' % (dur, RUN_LIMIT, path_length(p1)),
-                               'all done in %.1f s (limit %.0f s), turtle 1 drove %.1f m' % (dur, RUN_LIMIT, path_length(p1))))
+    return c6.set(True, reason('всё завершено за %.1f с (лимит %.0f с), путь черепахи 1 %.1f м'
+                               % (dur, RUN_LIMIT, path_length(p1)),
+                               'all done in %.1f s (limit %.0f s), turtle 1 drove %.1f m'
+                               % (dur, RUN_LIMIT, path_length(p1))))
 
 
 def evaluate(obs):

@@ -51,7 +51,8 @@ class Lab3Observer:
         args = variant_args(xacro_args(path), self.isu)
         obs['xacro_args'] = args
         out_urdf = os.path.join(self.logdir, 'model.urdf')
-        rc, text = self._step(['bash', '-c', 'rosrun xacro xacro "$@" > "%s"' % out_urdf, 'xacro', path] + args, 'xacro')
+        rc, text = self._step(['bash', '-c', 'rosrun xacro xacro "$@" > "%s"' % out_urdf, 'xacro', path] + args,
+                              'xacro')
         if rc is None:
             obs['xacro_error'] = 'did not finish within %d s' % rules.STEP_TIMEOUT
             return

@@ -46,8 +46,10 @@ def judge_expansion(c1, obs):
             return None, None
         args = ' '.join(obs.get('xacro_args') or []) or 'без аргументов'
         args_en = ' '.join(obs.get('xacro_args') or []) or 'no args'
-        c1.set(True, _both('xacro (%s) → %d звеньев, %d шарниров; check_urdf без ошибок' % (args, len(model['links']), len(model['joints'])),
-                           'xacro (%s) -> %d links, %d joints; check_urdf OK' % (args_en, len(model['links']), len(model['joints']))))
+        c1.set(True, _both('xacro (%s) → %d звеньев, %d шарниров; check_urdf без ошибок'
+                           % (args, len(model['links']), len(model['joints'])),
+                           'xacro (%s) -> %d links, %d joints; check_urdf OK'
+                           % (args_en, len(model['links']), len(model['joints']))))
         return model, an
     return None, None
 
@@ -58,12 +60,16 @@ def judge_links(c2, model, an, want):
     total = len(model['links'])
     lst = ', '.join(an['links'])
     if total == want['links']:
-        return c2.set(True, _both('%d звеньев в модели (все <link>, как считает учебник): %s' % (total, ', '.join(sorted(model['links']))),
-                                  '%d links in the model (every <link>, as the book counts): %s' % (total, ', '.join(sorted(model['links'])))))
+        return c2.set(True, _both('%d звеньев в модели (все <link>, как считает учебник): %s'
+                                  % (total, ', '.join(sorted(model['links']))),
+                                  '%d links in the model (every <link>, as the book counts): %s'
+                                  % (total, ', '.join(sorted(model['links'])))))
     if n == want['links']:
         return c2.set(True, _both('%d звеньев без колёс: %s' % (n, lst), '%d links without wheels: %s' % (n, lst)))
-    return c2.set(False, _both('в модели %d звеньев (все <link>), без колёс %d (%s), а в варианте %d — годится любой из двух счётов' % (total, n, lst, want['links']),
-                               'the model has %d links (every <link>), %d without wheels (%s); the variant wants %d in either count' % (total, n, lst, want['links'])))
+    return c2.set(False, _both('в модели %d звеньев (все <link>), без колёс %d (%s), а в варианте %d — '
+                               'годится любой из двух счётов' % (total, n, lst, want['links']),
+                               'the model has %d links (every <link>), %d without wheels (%s); '
+                               'the variant wants %d in either count' % (total, n, lst, want['links'])))
 
 
 def judge_arm(c3, model, an, want):
@@ -72,11 +78,14 @@ def judge_arm(c3, model, an, want):
     if an['branch']:
         a, b = an['branch']
         return c3.set(False, _both('подвижные шарниры манипулятора ветвятся (%s и %s): нужна одна цепь' % (a, b),
-                                   'the manipulator\'s movable joints branch (%s and %s): one serial chain expected' % (a, b)))
+                                   'the manipulator\'s movable joints branch (%s and %s): one serial chain expected'
+                                   % (a, b)))
     if an['arm_codes'] != want['arm']:
         return c3.set(False, _both('манипулятор %s (%s), а в варианте %s' % (an['arm_codes'] or '—', desc, want['arm']),
-                                   'manipulator %s (%s), the variant wants %s' % (an['arm_codes'] or '-', desc, want['arm'])))
-    return c3.set(True, _both('манипулятор %s: %s' % (an['arm_codes'], desc), 'manipulator %s: %s' % (an['arm_codes'], desc)))
+                                   'manipulator %s (%s), the variant wants %s'
+                                   % (an['arm_codes'] or '-', desc, want['arm'])))
+    return c3.set(True, _both('манипулятор %s: %s' % (an['arm_codes'], desc),
+                              'manipulator %s: %s' % (an['arm_codes'], desc)))
 
 
 def judge_wheels(c4, an, want):
@@ -86,7 +95,8 @@ def judge_wheels(c4, an, want):
     if got != ''.join(sorted(want['wheels'])):
         return c4.set(False, _both('колёсные шарниры %s (%s), а в варианте %s' % (got or '—', wdesc, want['wheels']),
                                    'wheel joints %s (%s), the variant wants %s' % (got or '-', wdesc, want['wheels'])))
-    return c4.set(True, _both('колёсные шарниры %s: %s' % (want['wheels'], wdesc), 'wheel joints %s: %s' % (want['wheels'], wdesc)))
+    return c4.set(True, _both('колёсные шарниры %s: %s' % (want['wheels'], wdesc),
+                              'wheel joints %s: %s' % (want['wheels'], wdesc)))
 
 
 def judge_body(c5, model, an, want):
@@ -99,9 +109,12 @@ def judge_body(c5, model, an, want):
     off = [abs(a - b) for a, b in zip(size, want['body'])]
     wdims = '%g×%g×%g' % tuple(want['body'])
     if max(off) > SIZE_TOL:
-        return c5.set(False, _both('корпус %s: %s мм, а в варианте %s мм (допуск ±%g мм)' % (an['body'], dims, wdims, SIZE_TOL),
-                                   'body %s: %s mm, the variant wants %s mm (tolerance ±%g mm)' % (an['body'], dims.replace('×', 'x'), wdims.replace('×', 'x'), SIZE_TOL)))
-    return c5.set(True, _both('корпус %s: %s мм' % (an['body'], dims), 'body %s: %s mm' % (an['body'], dims.replace('×', 'x'))))
+        return c5.set(False, _both('корпус %s: %s мм, а в варианте %s мм (допуск ±%g мм)'
+                                   % (an['body'], dims, wdims, SIZE_TOL),
+                                   'body %s: %s mm, the variant wants %s mm (tolerance ±%g mm)'
+                                   % (an['body'], dims.replace('×', 'x'), wdims.replace('×', 'x'), SIZE_TOL)))
+    return c5.set(True, _both('корпус %s: %s мм' % (an['body'], dims),
+                              'body %s: %s mm' % (an['body'], dims.replace('×', 'x'))))
 
 
 def judge_inertials(c6, model):
@@ -120,7 +133,8 @@ def evaluate(obs):
     c = criteria_by_id(CRITERIA)
     model, an = judge_expansion(c['1'], obs)
     if model is None:
-        why = _both('не проверено: модель не раскрылась (критерий 1)', 'not checked: the model did not expand (criterion 1)')
+        why = _both('не проверено: модель не раскрылась (критерий 1)',
+                    'not checked: the model did not expand (criterion 1)')
         for i in '23456':
             c[i].set(False, why)
     else:
@@ -162,7 +176,8 @@ def rviz_problems(rv, ref):
         classes = rv.get('classes') or []
         lack = [short for cls, short in RVIZ_NEEDED if cls not in classes]
         if lack:
-            problems.append(('в конфигурации RViz %s нет дисплея %s' % (os.path.basename(rv['config']), ', '.join(lack)),
+            problems.append(('в конфигурации RViz %s нет дисплея %s'
+                             % (os.path.basename(rv['config']), ', '.join(lack)),
                              'RViz config %s has no %s display' % (os.path.basename(rv['config']), ', '.join(lack))))
         frame = rv.get('fixed_frame')
         if ref is not None and frame not in ref['links']:
@@ -188,11 +203,14 @@ def evaluate_launch(obs, model, crit):
     if ref is not None:
         missing = sorted(l for l in ref['links'] if l not in frames)
         if missing:
-            problems.append(('нет TF звеньев: %s' % ', '.join(missing[:6]), 'no TF for links: %s' % ', '.join(missing[:6])))
+            problems.append(('нет TF звеньев: %s' % ', '.join(missing[:6]),
+                             'no TF for links: %s' % ', '.join(missing[:6])))
     if problems:
         ru = '; '.join(p[0] for p in problems[:3])
         en = '; '.join(p[1] for p in problems[:3])
         return crit.set(False, _both(ru, en))
     nodes = ', '.join('%s=%s' % (k, kinds[k][0]) for k in ('robot_state_publisher', 'joint_state_publisher', 'rviz'))
-    return crit.set(True, _both('%s; RViz %s (RobotModel, TF); TF всех %d звеньев за %.0f с' % (nodes, os.path.basename(rv['config']), len(frames), la.get('ready_after', 0)),
-                                '%s; RViz %s (RobotModel, TF); TF of all links after %.0f s' % (nodes, os.path.basename(rv['config']), la.get('ready_after', 0))))
+    return crit.set(True, _both('%s; RViz %s (RobotModel, TF); TF всех %d звеньев за %.0f с'
+                                % (nodes, os.path.basename(rv['config']), len(frames), la.get('ready_after', 0)),
+                                '%s; RViz %s (RobotModel, TF); TF of all links after %.0f s'
+                                % (nodes, os.path.basename(rv['config']), la.get('ready_after', 0))))

@@ -42,4 +42,5 @@ def drive_plugins(urdf_text):
 
 def wheel_joints(model):
     return sorted(n for n, j in model['joints'].items()
-                  if j['type'] == 'continuous' and 'cylinder' in [c[0] for c in model['links'][j['child']]['collisions']])
+                  if j['type'] == 'continuous'
+                  and 'cylinder' in [c[0] for c in model['links'][j['child']]['collisions']])

@@ -46,7 +46,8 @@ def judge_scene(c, obs):
             f = os.path.basename(sc['path'])
             c['1'].set(ok, reason('%s: %s' % (f, ru), '%s: %s' % (f, en)))
         except SceneError as e:
-            c['1'].set(False, reason('%s: %s' % (os.path.basename(sc['path']), e), '%s: %s' % (os.path.basename(sc['path']), e)))
+            f = os.path.basename(sc['path'])
+            c['1'].set(False, reason('%s: %s' % (f, e), '%s: %s' % (f, e)))
 
 
 def judge_description(c, la, want, sfx_ru, sfx_en):
@@ -56,7 +57,8 @@ def judge_description(c, la, want, sfx_ru, sfx_en):
     model = None
     if desc is None:
         why = reason('параметр /robot_description не появился за %.0f с (настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
-                     'parameter /robot_description did not appear within %.0f s (wall clock)%s' % (STARTUP_LIMIT, sfx_en))
+                     'parameter /robot_description did not appear within %.0f s (wall clock)%s'
+                     % (STARTUP_LIMIT, sfx_en))
         c['2'].set(False, why)
         c['6'].set(False, why)
     else:
@@ -68,8 +70,10 @@ def judge_description(c, la, want, sfx_ru, sfx_en):
             dims = '%.0fx%.0fx%.0f' % tuple(size)
             wdims = '%gx%gx%g' % tuple(want['body'])
             if off > SIZE_TOL:
-                c['2'].set(False, reason('корпус %s: %s мм, а в варианте %s мм (допуск ±%g мм)' % (an_body, dims, wdims, SIZE_TOL),
-                                         'body %s: %s mm, the variant wants %s mm (tolerance ±%g mm)' % (an_body, dims, wdims, SIZE_TOL)))
+                c['2'].set(False, reason('корпус %s: %s мм, а в варианте %s мм (допуск ±%g мм)'
+                                         % (an_body, dims, wdims, SIZE_TOL),
+                                         'body %s: %s mm, the variant wants %s mm (tolerance ±%g mm)'
+                                         % (an_body, dims, wdims, SIZE_TOL)))
             else:
                 c['2'].set(True, reason('корпус %s: %s мм' % (an_body, dims), 'body %s: %s mm' % (an_body, dims)))
         except ModelError as e:
@@ -77,7 +81,8 @@ def judge_description(c, la, want, sfx_ru, sfx_en):
         plugins = drive_plugins(desc)
         if plugins:
             c['6'].set(False, reason('в описании робота плагин движения %s: нужен ros_control' % ', '.join(plugins),
-                                     'the robot description has the drive plugin %s: use ros_control instead' % ', '.join(plugins)))
+                                     'the robot description has the drive plugin %s: use ros_control instead'
+                                     % ', '.join(plugins)))
         else:
             c['6'].set(True, reason('плагинов diff-drive / skid-steer нет', 'no diff-drive / skid-steer plugin'))
     return model
@@ -88,8 +93,10 @@ def judge_lidar(c, la, want, sfx_ru, sfx_en):
     scans = la.get('scans') or {}
     lo, hi = want['lidar']
     if not scans:
-        c['3'].set(False, reason('нет ни одного топика sensor_msgs/LaserScan с сообщениями за %.0f с (настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
-                                 'no sensor_msgs/LaserScan topic delivered a message within %.0f s (wall clock)%s' % (STARTUP_LIMIT, sfx_en)))
+        c['3'].set(False, reason('нет ни одного топика sensor_msgs/LaserScan с сообщениями за %.0f с '
+                                 '(настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
+                                 'no sensor_msgs/LaserScan topic delivered a message within %.0f s (wall clock)%s'
+                                 % (STARTUP_LIMIT, sfx_en)))
     else:
         good = [t for t, (a, b) in sorted(scans.items()) if abs(a - lo) <= RANGE_TOL and abs(b - hi) <= RANGE_TOL]
         desc_s = ', '.join('%s %g-%g m' % (t, a, b) for t, (a, b) in sorted(scans.items()))
@@ -105,8 +112,10 @@ def judge_camera(c, la, want, sfx_ru, sfx_en):
     imgs = la.get('images') or {}
     w, h = want['camera']
     if not imgs:
-        c['4'].set(False, reason('нет ни одного топика sensor_msgs/Image с кадрами за %.0f с (настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
-                                 'no sensor_msgs/Image topic delivered a frame within %.0f s (wall clock)%s' % (STARTUP_LIMIT, sfx_en)))
+        c['4'].set(False, reason('нет ни одного топика sensor_msgs/Image с кадрами за %.0f с (настенное время)%s'
+                                 % (STARTUP_LIMIT, sfx_ru),
+                                 'no sensor_msgs/Image topic delivered a frame within %.0f s (wall clock)%s'
+                                 % (STARTUP_LIMIT, sfx_en)))
     else:
         good = [t for t, (a, b) in sorted(imgs.items()) if (a, b) == (w, h)]
         desc_i = ', '.join('%s %dx%d' % (t, a, b) for t, (a, b) in sorted(imgs.items()))
@@ -121,8 +130,10 @@ def judge_controllers(c, la, model, sfx_ru, sfx_en):
     """Criterion 5: every controller running, every wheel by velocity."""
     ctrls = la.get('controllers')
     if not ctrls:
-        c['5'].set(False, reason('controller_manager не найден или не загрузил ни одного контроллера за %.0f с (настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
-                                 'no controller_manager, or it loaded no controller, within %.0f s (wall clock)%s' % (STARTUP_LIMIT, sfx_en)))
+        c['5'].set(False, reason('controller_manager не найден или не загрузил ни одного контроллера за %.0f с '
+                                 '(настенное время)%s' % (STARTUP_LIMIT, sfx_ru),
+                                 'no controller_manager, or it loaded no controller, within %.0f s (wall clock)%s'
+                                 % (STARTUP_LIMIT, sfx_en)))
     else:
         not_running = ['%s (%s)' % (n, d['state']) for n, d in sorted(ctrls.items()) if d['state'] != 'running']
         by_vel, other = set(), {}
@@ -145,11 +156,17 @@ def judge_controllers(c, la, model, sfx_ru, sfx_en):
                                      'controllers not running: %s' % ', '.join(not_running)))
         elif not wheels:
             c['5'].set(False, reason('в описании робота нет колёс (continuous-шарниров с цилиндром)',
-                                     'the robot description has no wheels (continuous joints with a cylinder collision)'))
+                                     'the robot description has no wheels '
+                                     '(continuous joints with a cylinder collision)'))
         elif missing:
-            vel_ru = miss_txt.replace(' by no running controller', ': нет запущенного контроллера').replace(' by ', ': ')
-            c['5'].set(False, reason('колёса управляются не по скорости: %s; нужен контроллер скорости (velocity_controllers, effort_controllers/JointVelocityController, diff_drive_controller)' % vel_ru,
-                                     'wheels not controlled by velocity: %s; a velocity controller is needed (velocity_controllers, effort_controllers/JointVelocityController, diff_drive_controller)' % miss_txt))
+            vel_ru = (miss_txt.replace(' by no running controller', ': нет запущенного контроллера')
+                      .replace(' by ', ': '))
+            c['5'].set(False, reason('колёса управляются не по скорости: %s; нужен контроллер скорости '
+                                     '(velocity_controllers, effort_controllers/JointVelocityController, '
+                                     'diff_drive_controller)' % vel_ru,
+                                     'wheels not controlled by velocity: %s; a velocity controller is needed '
+                                     '(velocity_controllers, effort_controllers/JointVelocityController, '
+                                     'diff_drive_controller)' % miss_txt))
         else:
             c['5'].set(True, reason('%s; колёса %s по скорости' % (names, ', '.join(wheels)),
                                     '%s; wheels %s by velocity' % (names, ', '.join(wheels))))
@@ -168,26 +185,38 @@ def judge_motion(c, la, sfx_ru, sfx_en):
     robot = mv.get('robot', '?')
     dur = m['duration']
     short = dur < RUN_SIM - 0.5
-    why_short_ru = '; за %.0f с настенного времени прошло лишь %.1f с времени симуляции' % (RUN_WALL_LIMIT, dur) if short else ''
-    why_short_en = '; only %.1f s of sim time passed within %.0f s of wall clock' % (dur, RUN_WALL_LIMIT) if short else ''
+    why_short_ru = ('; за %.0f с настенного времени прошло лишь %.1f с времени симуляции' % (RUN_WALL_LIMIT, dur)
+                    if short else '')
+    why_short_en = ('; only %.1f s of sim time passed within %.0f s of wall clock' % (dur, RUN_WALL_LIMIT)
+                    if short else '')
     if m['path'] < MIN_PATH or m['reach'] < MIN_REACH:
-        c['7'].set(False, reason('%s за %.1f с времени симуляции проехал %.2f м и удалился от старта на %.2f м; нужно не менее %.1f м и %.1f м%s'
+        c['7'].set(False, reason('%s за %.1f с времени симуляции проехал %.2f м и удалился от старта на %.2f м; '
+                                 'нужно не менее %.1f м и %.1f м%s'
                                  % (robot, dur, m['path'], m['reach'], MIN_PATH, MIN_REACH, why_short_ru),
-                                 '%s travelled %.2f m and got %.2f m from the start in %.1f s of sim time; at least %.1f m and %.1f m needed%s'
+                                 '%s travelled %.2f m and got %.2f m from the start in %.1f s of sim time; '
+                                 'at least %.1f m and %.1f m needed%s'
                                  % (robot, m['path'], m['reach'], dur, MIN_PATH, MIN_REACH, why_short_en)))
     else:
-        c['7'].set(True, reason('%s: %.2f м за %.1f с времени симуляции, до %.2f м от старта' % (robot, m['path'], dur, m['reach']),
-                                '%s: %.2f m in %.1f s of sim time, up to %.2f m from the start' % (robot, m['path'], dur, m['reach'])))
+        c['7'].set(True, reason('%s: %.2f м за %.1f с времени симуляции, до %.2f м от старта'
+                                % (robot, m['path'], dur, m['reach']),
+                                '%s: %.2f m in %.1f s of sim time, up to %.2f m from the start'
+                                % (robot, m['path'], dur, m['reach'])))
     rate = m['turned'] / max(m['path'], 0.05)
     if m['path'] < MIN_PATH / 3:
-        c['8'].set(False, reason('не проверено: робот почти не двигался (%.2f м, повернулся на %.1f рад)' % (m['path'], m['turned']),
-                                 'not judged: the robot hardly moved (%.2f m, turned %.1f rad)' % (m['path'], m['turned'])))
+        c['8'].set(False, reason('не проверено: робот почти не двигался (%.2f м, повернулся на %.1f рад)'
+                                 % (m['path'], m['turned']),
+                                 'not judged: the robot hardly moved (%.2f m, turned %.1f rad)'
+                                 % (m['path'], m['turned'])))
     elif rate > SPIN_LIMIT:
-        c['8'].set(False, reason('вращение на месте: %.1f рад поворота на %.2f м пути (не более %.1f рад/м)' % (m['turned'], m['path'], SPIN_LIMIT),
-                                 'spinning in place: turned %.1f rad over %.2f m (at most %.1f rad/m)' % (m['turned'], m['path'], SPIN_LIMIT)))
+        c['8'].set(False, reason('вращение на месте: %.1f рад поворота на %.2f м пути (не более %.1f рад/м)'
+                                 % (m['turned'], m['path'], SPIN_LIMIT),
+                                 'spinning in place: turned %.1f rad over %.2f m (at most %.1f rad/m)'
+                                 % (m['turned'], m['path'], SPIN_LIMIT)))
     elif m['reversals'] > MAX_REVERSALS:
-        c['8'].set(False, reason('колебания: %d смен направления вперёд/назад за %.1f с (не более %d)' % (m['reversals'], dur, MAX_REVERSALS),
-                                 'oscillation: %d forward/backward reversals in %.1f s (at most %d)' % (m['reversals'], dur, MAX_REVERSALS)))
+        c['8'].set(False, reason('колебания: %d смен направления вперёд/назад за %.1f с (не более %d)'
+                                 % (m['reversals'], dur, MAX_REVERSALS),
+                                 'oscillation: %d forward/backward reversals in %.1f s (at most %d)'
+                                 % (m['reversals'], dur, MAX_REVERSALS)))
     else:
         c['8'].set(True, reason('%.1f рад/м поворота, %d смен направления' % (rate, m['reversals']),
                                 '%.1f rad/m turned, %d reversals' % (rate, m['reversals'])))

@@ -67,7 +67,8 @@ def analyse_scene(text):
         elif tag == 'model':
             name = el.get('name', '')
             res['names'].append(name)
-            geoms = [_local(g.tag) for g in el.iter() if _local(g.tag) in ('mesh', 'plane', 'box', 'sphere', 'cylinder')]
+            geoms = [_local(g.tag) for g in el.iter()
+                     if _local(g.tag) in ('mesh', 'plane', 'box', 'sphere', 'cylinder')]
             if 'plane' in geoms:
                 res['ground'] = True
             meshes = sorted({(m.findtext('uri') or '').strip() for m in el.iter() if _local(m.tag) == 'mesh'})
@@ -84,7 +85,8 @@ def scene_verdict(scene, model_dirs):
     if not scene['light']:
         problems.append(('нет источника света (<light> или model://sun)', 'no light (<light> or model://sun)'))
     if not scene['ground']:
-        problems.append(('нет земли (model://ground_plane или <plane>)', 'no ground (model://ground_plane or a <plane>)'))
+        problems.append(('нет земли (model://ground_plane или <plane>)',
+                         'no ground (model://ground_plane or a <plane>)'))
     g = scene['gravity']
     if not g or len(g) != 3 or not g[2] < 0:
         problems.append(('нет <gravity> с z < 0', 'no <gravity> with z < 0'))
@@ -102,8 +104,10 @@ def scene_verdict(scene, model_dirs):
     if len(kinds) < 3:
         extra_ru = ' (примитивы не считаются: %s)' % ', '.join(prim) if prim else ''
         extra_en = ' (primitives do not count: %s)' % ', '.join(prim) if prim else ''
-        problems.append(('разных непримитивных объектов %d (%s), нужно не менее 3%s' % (len(kinds), objs or '—', extra_ru),
-                         '%d different non-primitive objects (%s), at least 3 needed%s' % (len(kinds), objs or 'none', extra_en)))
+        problems.append(('разных непримитивных объектов %d (%s), нужно не менее 3%s'
+                         % (len(kinds), objs or '—', extra_ru),
+                         '%d different non-primitive objects (%s), at least 3 needed%s'
+                         % (len(kinds), objs or 'none', extra_en)))
     if problems:
         return False, '; '.join(p[0] for p in problems), '; '.join(p[1] for p in problems)
     return True, 'свет, земля, гравитация %s; объекты: %s' % (' '.join('%g' % x for x in g), objs), \

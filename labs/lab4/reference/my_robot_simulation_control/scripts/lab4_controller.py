@@ -66,7 +66,8 @@ class Explorer:
                 return cmd
         if front < self.stop_distance or near < self.side_distance:
             self.turning = self.turn if left >= right else -self.turn
-            rospy.loginfo('obstacle at %.2f m: turning %s' % (min(front, near), 'left' if self.turning > 0 else 'right'))
+            rospy.loginfo('obstacle at %.2f m: turning %s'
+                          % (min(front, near), 'left' if self.turning > 0 else 'right'))
             cmd.angular.z = self.turning
             return cmd
         cmd.linear.x = self.speed
