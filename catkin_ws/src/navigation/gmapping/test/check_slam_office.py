@@ -128,7 +128,8 @@ class SlamOfficeTest(SimDriving, unittest.TestCase):
         if os.environ.get('SLAM_OFFICE_DUMP'):
             np.save(os.environ['SLAM_OFFICE_DUMP'], data)
         self.assertGreater(seen, 300, 'too few wall faces observed (%d points)' % seen)
-        self.assertGreaterEqual(found, WALLS_FOUND_MIN, 'only %.1f %% of the observed wall faces marked' % (100 * found))
+        self.assertGreaterEqual(found, WALLS_FOUND_MIN,
+                                'only %.1f %% of the observed wall faces marked' % (100 * found))
         self.assertLessEqual(false_occ, FALSE_OCCUPIED_MAX, '%.2f %% false occupied cells (%.1f %% of walls marked)'
                              % (100 * false_occ, 100 * found))
 

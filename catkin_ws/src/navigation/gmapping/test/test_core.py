@@ -3,16 +3,11 @@ statistics, weights / Neff / resampling, map integration, and a whole filter run
 room with drifting odometry."""
 import math
 
-import os
-import sys
-
 import numpy as np
 import pytest
 
-from gmapping import native
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import segment_lidar
+from gmapping import native
 from gmapping.motion import absolute_difference, draw_from_motion
 from gmapping.params import ParamError, SlamParams, validate
 from gmapping.rbpf import GridSlam
@@ -66,7 +61,8 @@ def test_scan_matcher_finds_a_known_offset(offset):
     # gmapping's score (sigma 0.05) is nearly flat within one cell: the matcher recovers the
     # offset to about a cell (0.05 m), the particle filter averages the rest
     assert math.hypot(err[0], err[1]) < 0.6 * math.hypot(err0[0], err0[1]) and math.hypot(err[0], err[1]) < 0.06, \
-        'scan matcher ended %.3f m off (started %.3f m off)' % (math.hypot(err[0], err[1]), math.hypot(err0[0], err0[1]))
+        'scan matcher ended %.3f m off (started %.3f m off)' % (math.hypot(err[0], err[1]),
+                                                                math.hypot(err0[0], err0[1]))
     assert abs(err[2]) < 0.02
     before = native.score(g, 0, start, scan, matcher())
     assert scores[0] > before

@@ -5,16 +5,11 @@ bit on small synthetic cases, on the field's fast path (kernelSize 1), its gener
 (kernelSize 2) and its fallback at the grid's edge. Also resampling's sharing of grids."""
 import math
 
-import os
-import sys
-
 import numpy as np
 import pytest
 
-from gmapping import native
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import segment_lidar
+from gmapping import native
 from gmapping.params import SlamParams
 
 # a 3 x 2.4 m room with a pillar, walls off the cell borders

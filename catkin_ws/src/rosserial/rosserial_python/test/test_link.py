@@ -4,17 +4,12 @@ lost sync and a vanishing port, with the original's log messages."""
 import threading
 import time
 
-import os
-import sys
-
 import pytest
 
+from fake_device import EMPTY_MD5, STRING_MD5, FakeDevice
 from rosserial_python import protocol as p
 from rosserial_python.link import DeviceLink, DeviceServiceTimeout
 from rosserial_python.ports import SerialPort
-
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fake_device import EMPTY_MD5, STRING_MD5, FakeDevice
 
 KNOWN_MD5 = {('std_msgs/String', 'message'): STRING_MD5,
              ('std_msgs/Empty', 'message'): EMPTY_MD5,

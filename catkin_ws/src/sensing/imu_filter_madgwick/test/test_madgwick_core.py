@@ -1,13 +1,9 @@
 """Unit tests of the Madgwick core and the per-sample processor (no roscore)."""
 import math
-import os
-import sys
 
 import pytest
 
-sys.path.insert(0, os.path.dirname(__file__))
 from imu_sim import simulate, tilt_error_deg, angle_deg, G
-
 from imu_filter_madgwick.filter import (MadgwickFilter, orientation_from_measurement, quat_from_rpy,
                                         quat_to_rpy, FreeFall, FREE_FALL_WARNING)
 from imu_filter_madgwick.processor import Params, ImuProcessor, NON_FINITE_WARNING, ZERO_STAMP_WARNING

@@ -1,14 +1,10 @@
 """Unit tests of the EKF core, the sensor front-end and the runner (no roscore)."""
 import math
-import os
-import sys
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, os.path.dirname(__file__))
 from drive_sim import drive, truth_at
-
 from robot_localization.ekf import Ekf, Measurement, X, Y, YAW, VX, VYAW, ROLL, PITCH, normalize_angle
 from robot_localization.sensors import (SensorConfig, twist_measurement, pose_measurement,
                                         imu_angular_measurement, config_warnings,
