@@ -1,85 +1,82 @@
 """The robot model of a URDF text as plain data, for the graders of labs 3 and 4 (no rospy).
 
-`parse_urdf` reads links (collisions with their origin's rpy, visual, inertial) and joints
-(type, parent, child, mimic); `body_link` and `body_size` find the robot's body and its box.
+`parse_urdf` gives the graders' view of the tree that ode_sim.description.urdf_tree (the one
+URDF reader of the repository) reads: links (collisions with their origin's rpy, visual,
+inertial) and joints (type, parent, child, mimic); `body_link` and `body_size` find the robot's
+body and its box.
 """
 import math
-import xml.etree.ElementTree as ET
+
+from ode_sim.description import urdf_tree
 
 
 class ModelError(Exception):
     """The URDF text cannot be analysed; the message says why (one line)."""
 
 
-def _floats(text, n, what):
-    try:
-        v = [float(x) for x in (text or '').split()]
-    except ValueError:
-        raise ModelError('%s: %r is not %d numbers' % (what, text, n))
-    if len(v) != n:
+def _numbers(text, n, what):
+    v = urdf_tree.floats(text)
+    if v is None or len(v) != n:
         raise ModelError('%s: %r is not %d numbers' % (what, text, n))
     return v
 
 
-def _geometry(el, what):
-    g = el.find('geometry')
-    if g is None or not len(g):
+def _length(shape, attr, what):
+    """A cylinder's or sphere's radius/length: nan when left out."""
+    if shape.attrs.get(attr) is None:
+        return float('nan')
+    return _numbers(shape.attrs[attr], 1, '%s %s %s' % (what, shape.kind, attr))[0]
+
+
+def _collision(shape, what):
+    """(kind, dimensions, rpy) of a urdf_tree.Shape, or None when it has no geometry."""
+    if not shape.shapes:
         return None
-    shape = g[0]
-    t = shape.tag
-    if t == 'box':
-        return ('box', _floats(shape.get('size'), 3, what + ' box size'))
-    if t == 'cylinder':
-        return ('cylinder', [float(shape.get('radius', 'nan')), float(shape.get('length', 'nan'))])
-    if t == 'sphere':
-        return ('sphere', [float(shape.get('radius', 'nan'))])
-    return (t, [])
+    if shape.kind == 'box':
+        dims = _numbers(shape.attrs.get('size'), 3, what + ' box size')
+    elif shape.kind == 'cylinder':
+        dims = [_length(shape, 'radius', what), _length(shape, 'length', what)]
+    elif shape.kind == 'sphere':
+        dims = [_length(shape, 'radius', what)]
+    else:
+        dims = []
+    if shape.origin.rpy is None:
+        raise ModelError('origin rpy: %r is not 3 numbers' % shape.origin.el.get('rpy'))
+    return (shape.kind, dims, tuple(shape.origin.rpy))
 
 
-def _rpy(el):
-    o = el.find('origin')
-    if o is None or not o.get('rpy'):
-        return (0.0, 0.0, 0.0)
-    return tuple(_floats(o.get('rpy'), 3, 'origin rpy'))
+def _inertial(inertial, what):
+    """{'mass', 'inertia': {ixx, iyy, izz}} of a urdf_tree.Inertial (inertia values left out:
+    nan; no <mass>, no <inertia>: None)."""
+    if inertial is None:
+        return None
+    mass = tensor = None
+    if inertial.mass_el is not None:
+        mass = inertial.mass
+    if inertial.inertia_el is not None:
+        tensor = {k: float('nan') if inertial.inertia_el.get(k) is None else inertial.inertia[k]
+                  for k in ('ixx', 'iyy', 'izz')}
+    if (inertial.mass_el is not None and mass is None) or None in (tensor or {}).values():
+        raise ModelError('%s: inertial values are not numbers' % what)
+    return {'mass': mass, 'inertia': tensor}
 
 
 def parse_urdf(text):
     """{'name', 'links': {name: {...}}, 'joints': {name: {...}}}; ModelError when unusable."""
     try:
-        root = ET.fromstring(text)
-    except ET.ParseError as e:
-        raise ModelError('not XML: %s' % e)
-    if root.tag != 'robot':
-        raise ModelError('the root element is <%s>, not <robot>' % root.tag)
+        tree = urdf_tree.read_urdf(text)
+    except urdf_tree.NotUrdf as e:
+        raise ModelError(str(e))
     links, joints = {}, {}
-    for l in root.findall('link'):
-        name = l.get('name')
+    for name, l in tree.links.items():
         what = 'link %s' % name
-        cols = []
-        for c in l.findall('collision'):
-            g = _geometry(c, what + ' collision')
-            if g:
-                cols.append((g[0], g[1], _rpy(c)))
-        inertial = None
-        i = l.find('inertial')
-        if i is not None:
-            m = i.find('mass')
-            t = i.find('inertia')
-            try:
-                mass = float(m.get('value')) if m is not None else None
-                tensor = {k: float(t.get(k, 'nan')) for k in ('ixx', 'iyy', 'izz')} if t is not None else None
-            except ValueError:
-                raise ModelError('%s: inertial values are not numbers' % what)
-            inertial = {'mass': mass, 'inertia': tensor}
-        links[name] = {'collisions': cols, 'visual': l.find('visual') is not None, 'inertial': inertial}
-    for j in root.findall('joint'):
-        p, c = j.find('parent'), j.find('child')
-        joints[j.get('name')] = {'type': j.get('type'), 'parent': p.get('link') if p is not None else None,
-                                 'child': c.get('link') if c is not None else None,
-                                 'mimic': j.find('mimic') is not None}
+        cols = [c for c in (_collision(c, what + ' collision') for c in l.collisions) if c]
+        links[name] = {'collisions': cols, 'visual': bool(l.visuals), 'inertial': _inertial(l.inertial, what)}
+    for name, j in tree.joints.items():
+        joints[name] = {'type': j.type, 'parent': j.parent, 'child': j.child, 'mimic': j.mimic_el is not None}
     if not links:
         raise ModelError('the model has no <link>')
-    return {'name': root.get('name'), 'links': links, 'joints': joints}
+    return {'name': tree.name, 'links': links, 'joints': joints}
 
 
 def root_link(model):

@@ -9,11 +9,12 @@ a revolute/prismatic joint without limits, undefined materials, unresolvable mes
 import os
 import subprocess
 import tempfile
-import xml.etree.ElementTree as ET
 
 import numpy as np
 
-MOVING = ('revolute', 'continuous', 'prismatic')
+from ode_sim.description import urdf_tree
+
+MOVING = urdf_tree.MOVING
 
 
 class ModelError(Exception):
@@ -21,23 +22,25 @@ class ModelError(Exception):
 
 
 class Model:
+    """A URDF read by ode_sim.description.urdf_tree (`tree`), with its elements by name for the
+    checks and the description packages' tests."""
+
     def __init__(self, root):
-        self.name = root.get('name')
-        self.links = {l.get('name'): l for l in root.findall('link')}
-        self.joints = {j.get('name'): j for j in root.findall('joint')}
-        self.materials = {m.get('name'): m for m in root.findall('material')}
+        self.tree = urdf_tree.read_tree(root)
+        self.name = self.tree.name
+        self.links = {n: l.el for n, l in self.tree.links.items()}
+        self.joints = {n: j.el for n, j in self.tree.joints.items()}
+        self.materials = {n: m.el for n, m in self.tree.materials.items()}
         self.transmissions = root.findall('transmission')
         self.gazebo = root.findall('gazebo')
         self.xml = root
 
     def parent_of(self):
         """{child link: joint element}"""
-        return {j.find('child').get('link'): j for j in self.joints.values()
-                if j.find('child') is not None}
+        return {j.child: j.el for j in self.tree.joints.values() if j.child_el is not None}
 
     def roots(self):
-        children = set(self.parent_of())
-        return sorted(l for l in self.links if l not in children)
+        return sorted(self.tree.roots())
 
     def root(self):
         roots = self.roots()
@@ -46,17 +49,16 @@ class Model:
         return roots[0]
 
     def moving_joints(self):
-        return sorted(n for n, j in self.joints.items() if j.get('type') in MOVING)
+        return sorted(n for n, j in self.tree.joints.items() if j.type in MOVING)
 
 
 def parse(xml_text):
     try:
-        root = ET.fromstring(xml_text)
-    except ET.ParseError as e:
-        raise ModelError('not well-formed XML: %s' % e)
-    if root.tag != 'robot':
-        raise ModelError('root element is <%s>, a URDF starts with <robot>' % root.tag)
-    return Model(root)
+        return Model(urdf_tree.parse_robot(xml_text))
+    except urdf_tree.NotUrdf as e:
+        if e.kind == 'xml':
+            raise ModelError('not well-formed XML: %s' % e.detail)
+        raise ModelError('root element is <%s>, a URDF starts with <robot>' % e.detail)
 
 
 def inertia_matrix(inertial):
@@ -70,29 +72,22 @@ def inertia_matrix(inertial):
 
 
 def _floats(text, n, what):
-    try:
-        v = [float(x) for x in text.split()]
-    except (AttributeError, ValueError):
-        v = []
-    if len(v) != n:
+    v = urdf_tree.floats(text, n)
+    if v is None:
         raise ModelError('%s: expected %d numbers, got %r' % (what, n, text))
     return v
 
 
 def _inertial_problems(name, inertial):
+    """Problems of a link's urdf_tree.Inertial (None: the link has none)."""
     out = []
     if inertial is None:
         return ['link %s: no <inertial>' % name]
-    mass = inertial.find('mass')
-    try:
-        m = float(mass.get('value')) if mass is not None else None
-    except (TypeError, ValueError):
-        m = None
-    if m is None or not m > 0:
+    if inertial.mass is None or not inertial.mass > 0:
         out.append('link %s: mass must be a number > 0, got %r'
-                   % (name, None if mass is None else mass.get('value')))
+                   % (name, None if inertial.mass_el is None else inertial.mass_el.get('value')))
     try:
-        I = inertia_matrix(inertial)
+        I = inertia_matrix(inertial.el)
     except ValueError as e:
         return out + ['link %s: bad inertia value (%s)' % (name, e)]
     if I is None:
@@ -109,83 +104,76 @@ def _inertial_problems(name, inertial):
     return out
 
 
-def _geometry_problems(where, geom, resolve):
-    if geom is None or len(list(geom)) != 1:
+def _geometry_problems(where, shape, resolve):
+    """Problems of a urdf_tree.Shape (a collision or a visual)."""
+    if len(shape.shapes) != 1:
         return ['%s: <geometry> must hold exactly one shape' % where]
-    shape = list(geom)[0]
-    need = {'box': ['size'], 'cylinder': ['radius', 'length'], 'sphere': ['radius'],
-            'mesh': ['filename']}.get(shape.tag)
+    need = urdf_tree.SHAPE_ATTRS.get(shape.kind)
     if need is None:
-        return ['%s: unknown shape <%s>' % (where, shape.tag)]
+        return ['%s: unknown shape <%s>' % (where, shape.kind)]
     out = []
     for attr in need:
-        if shape.get(attr) is None:
-            out.append('%s: <%s> without %s' % (where, shape.tag, attr))
-    if shape.tag == 'mesh' and shape.get('filename') and resolve:
-        path = resolve(shape.get('filename'))
+        if shape.attrs.get(attr) is None:
+            out.append('%s: <%s> without %s' % (where, shape.kind, attr))
+    if shape.kind == 'mesh' and shape.attrs.get('filename') and resolve:
+        path = resolve(shape.attrs['filename'])
         if path is None or not os.path.isfile(path):
-            out.append('%s: mesh %s not found' % (where, shape.get('filename')))
-    elif shape.tag != 'mesh':
+            out.append('%s: mesh %s not found' % (where, shape.attrs['filename']))
+    elif shape.kind != 'mesh':
         for attr in need:
-            try:
-                vals = [float(x) for x in (shape.get(attr) or '').split()]
-            except ValueError:
-                vals = []
+            vals = shape.values[attr]
             if not vals or min(vals) <= 0:
-                out.append('%s: <%s %s="%s"> must be positive' % (where, shape.tag, attr, shape.get(attr)))
+                out.append('%s: <%s %s="%s"> must be positive' % (where, shape.kind, attr, shape.attrs.get(attr)))
     return out
+
+
+def _joint_problems(j):
+    """A connected joint's axis and limits (urdf_tree.Joint)."""
+    out = []
+    if j.type in MOVING:
+        if j.axis_el is not None and j.axis is None:
+            raise ModelError('joint %s axis: expected 3 numbers, got %r' % (j.name, j.axis_el.get('xyz')))
+        if j.axis is None or not np.linalg.norm(j.axis) > 0:
+            out.append('joint %s: %s joint needs a non-zero <axis xyz>' % (j.name, j.type))
+    if j.type in ('revolute', 'prismatic'):
+        if j.limit is None or j.limit['lower'] is None or j.limit['upper'] is None:
+            out.append('joint %s: %s joint needs <limit lower upper effort velocity>' % (j.name, j.type))
+    return out
+
+
+def _link_problems(tree, link, resolve):
+    out = []
+    if not link.collisions:
+        out.append('link %s: no <collision>' % link.name)
+    for k, c in enumerate(link.collisions):
+        out += _geometry_problems('link %s collision %d' % (link.name, k), c, resolve)
+    for k, v in enumerate(link.visuals):
+        out += _geometry_problems('link %s visual %d' % (link.name, k), v, resolve)
+        mat = v.material
+        if mat is not None and mat.color_el is None and mat.texture_el is None \
+                and mat.name not in tree.materials:
+            out.append('link %s visual %d: material %r is not defined' % (link.name, k, mat.el.get('name')))
+    return out + _inertial_problems(link.name, link.inertial)
 
 
 def problems(xml_text, root_frames=('base_footprint',), resolve=None):
     """Every problem found, as one line each ([] for a good model). `root_frames`: links that may
     be bare frames (no geometry, no inertia) when they are the root. `resolve(url)` maps a mesh
     URL to a file path (None: meshes are not looked up)."""
-    model = parse(xml_text)
+    tree = parse(xml_text).tree
+    if not tree.links:
+        return ['robot %r has no links' % tree.name]
     out = []
-    if not model.links:
-        return ['robot %r has no links' % model.name]
-    seen_child = {}
-    for jn, j in model.joints.items():
-        parent, child = j.find('parent'), j.find('child')
-        if parent is None or child is None:
-            out.append('joint %s: needs <parent link> and <child link>' % jn)
-            continue
-        for role, el in (('parent', parent), ('child', child)):
-            if el.get('link') not in model.links:
-                out.append('joint %s: %s link %r is not defined' % (jn, role, el.get('link')))
-        if child.get('link') in seen_child:
-            out.append('link %s: child of two joints (%s, %s)' % (child.get('link'), seen_child[child.get('link')], jn))
-        seen_child[child.get('link')] = jn
-        jt = j.get('type')
-        if jt not in MOVING + ('fixed', 'floating', 'planar'):
-            out.append('joint %s: unknown type %r' % (jn, jt))
-        if jt in MOVING:
-            axis = j.find('axis')
-            if axis is None or not np.linalg.norm(_floats(axis.get('xyz'), 3, 'joint %s axis' % jn)) > 0:
-                out.append('joint %s: %s joint needs a non-zero <axis xyz>' % (jn, jt))
-        if jt in ('revolute', 'prismatic'):
-            lim = j.find('limit')
-            if lim is None or lim.get('lower') is None or lim.get('upper') is None:
-                out.append('joint %s: %s joint needs <limit lower upper effort velocity>' % (jn, jt))
-    roots = model.roots()
-    if len(roots) != 1:
-        out.append('the links form %d trees (roots %s), expected one' % (len(roots), ', '.join(roots)))
-    for ln, link in sorted(model.links.items()):
-        bare = ln in roots and ln in root_frames
-        if bare and not list(link):
-            continue
-        cols = link.findall('collision')
-        if not cols:
-            out.append('link %s: no <collision>' % ln)
-        for k, c in enumerate(cols):
-            out += _geometry_problems('link %s collision %d' % (ln, k), c.find('geometry'), resolve)
-        for k, v in enumerate(link.findall('visual')):
-            out += _geometry_problems('link %s visual %d' % (ln, k), v.find('geometry'), resolve)
-            mat = v.find('material')
-            if mat is not None and mat.find('color') is None and mat.find('texture') is None \
-                    and mat.get('name') not in model.materials:
-                out.append('link %s visual %d: material %r is not defined' % (ln, k, mat.get('name')))
-        out += _inertial_problems(ln, link.find('inertial'))
+    for j in tree.joints.values():
+        out += j.problems
+        if j.connects:
+            out += _joint_problems(j)
+    out += tree.tree_problems
+    roots = tree.roots()
+    for ln, link in sorted(tree.links.items()):
+        if ln in roots and ln in root_frames and not list(link.el):
+            continue        # a bare root frame
+        out += _link_problems(tree, link, resolve)
     return out
 
 
