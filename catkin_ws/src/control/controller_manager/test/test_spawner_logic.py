@@ -225,7 +225,8 @@ def test_interface_output_as_the_original(monkeypatch, capsys):
     assert cmi.reload_libraries(True)
     assert capsys.readouterr().out == (
         "'my_controller1' - 'hardware_interface::EffortJointInterface' ( running )\n"
-        "'jsc' - 'hardware_interface::EffortJointInterface+hardware_interface::VelocityJointInterface' ( initialized )\n"
+        "'jsc' - 'hardware_interface::EffortJointInterface+hardware_interface::VelocityJointInterface'"
+        " ( initialized )\n"
         "Loaded 'my_controller1'\n"
         "Unloaded 'my_controller1' successfully\n"
         "Started ['a'] successfully\n"

@@ -80,7 +80,8 @@ class CliTest(unittest.TestCase):
         self.assertTrue(self.cm.switch(start=['velocity_j2']))
         rc, out = cli('reload-libraries', '--restore')
         self.assertEqual(0, rc, out)
-        self.assertEqual('Restore: True\nSuccessfully reloaded libraries\nControllers restored to original state\n', out)
+        self.assertEqual('Restore: True\nSuccessfully reloaded libraries\n'
+                         'Controllers restored to original state\n', out)
         self.assertEqual({'velocity_j2': 'running', 'state': 'initialized'}, self.cm.states())
         # As the original script: without --restore the loaded controllers are killed.
         rc, out = cli('reload-libraries')

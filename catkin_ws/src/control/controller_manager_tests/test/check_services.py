@@ -35,7 +35,8 @@ class ServicesTest(unittest.TestCase):
         self.assertFalse(self.cm.load('unknown_type'))
         self.rosout.wait_for("Could not load controller 'unknown_type' because controller type "
                              "'no_such_pkg/NoSuchController' does not exist.")
-        self.rosout.wait_for("Use 'rosservice call controller_manager/list_controller_types' to get the available types")
+        self.rosout.wait_for("Use 'rosservice call controller_manager/list_controller_types' "
+                             "to get the available types")
         self.assertFalse(self.cm.load('no_type'))
         self.rosout.wait_for("Could not load controller 'no_type' because the type was not specified. Did you load "
                              "the controller configuration on the parameter server (namespace: '/no_type')?")
@@ -59,7 +60,8 @@ class ServicesTest(unittest.TestCase):
         self.assertEqual(['joint1'], c.claimed_resources[0].resources)
         self.assertTrue(self.cm.unload('effort_j1'))
         self.assertFalse(self.cm.unload('effort_j1'))
-        self.rosout.wait_for("Could not unload controller with name effort_j1 because no controller with this name exists")
+        self.rosout.wait_for("Could not unload controller with name effort_j1 "
+                             "because no controller with this name exists")
 
     def test_switch_strict_and_best_effort(self):
         self.assertTrue(self.cm.load('velocity_j2'))

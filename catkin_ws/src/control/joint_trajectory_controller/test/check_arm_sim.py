@@ -73,7 +73,8 @@ class ArmSimTest(unittest.TestCase):
         self.wait('the arm at rest', lambda: max(abs(v) for v in self.actual()[1]) < 0.05)
 
     def test_1_goal_reaches_the_end(self):
-        state, result = self.run_goal(FollowJointTrajectoryGoal(trajectory=traj([([0.6, -0.4], 1.5), ([1.0, 0.5], 3.0)])))
+        state, result = self.run_goal(FollowJointTrajectoryGoal(
+            trajectory=traj([([0.6, -0.4], 1.5), ([1.0, 0.5], 3.0)])))
         self.assertEqual(GoalStatus.SUCCEEDED, state)
         self.assertEqual(FollowJointTrajectoryResult.SUCCESSFUL, result.error_code)
         self.settle()

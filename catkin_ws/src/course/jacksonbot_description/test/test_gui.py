@@ -8,7 +8,8 @@ COLOURS = {'blue base': (0.05, 0.35, 0.9, 1.0), 'black wheels': (0.0, 0.0, 0.0, 
 
 
 def test_display_launch_shows_the_model(rviz_env, screen, tmp_path):
-    rviz_launch_shows(rviz_env, screen.display, tmp_path, ['jacksonbot_description', 'display.launch'], COLOURS, 'jacksonbot_description_display.png')
+    rviz_launch_shows(rviz_env, screen.display, tmp_path, ['jacksonbot_description', 'display.launch'], COLOURS,
+                      'jacksonbot_description_display.png')
 
 
 def test_colours_are_the_models_materials():

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
 """Camera and lidar data of the simulated robot (practical work 6).
 
-Subscribes to the camera image (~image_topic, default /diff_drive_robot/camera1/image_raw, the textbook's) and the lidar scan
-(~scan_topic, default /diff_drive_robot/laser). Each image is converted with cv_bridge to an OpenCV BGR frame,
-its Canny edges (~low, ~high thresholds) are published as sensor_msgs/Image mono8 on ~edges
+Subscribes to the camera image (~image_topic, default /diff_drive_robot/camera1/image_raw, the
+textbook's) and the lidar scan (~scan_topic, default /diff_drive_robot/laser). Each image is
+converted with cv_bridge to an OpenCV BGR frame, its Canny edges (~low, ~high thresholds) are published as sensor_msgs/Image mono8 on ~edges
 and, when a display is available (DISPLAY set and ~show true), both are shown with
 cv2.imshow. Image and scan statistics are logged once per ~log_period seconds.
 
@@ -30,7 +30,8 @@ class sensor_datahandler:
         self.curent_image = None
         self.frames = 0
         self.edges_pub = rospy.Publisher('~edges', Image, queue_size=1)
-        self.camera_subscriber = rospy.Subscriber(rospy.get_param('~image_topic', '/diff_drive_robot/camera1/image_raw'),
+        self.camera_subscriber = rospy.Subscriber(rospy.get_param('~image_topic',
+                                                                  '/diff_drive_robot/camera1/image_raw'),
                                                   Image, self.camera_cb, queue_size=1, buff_size=2 ** 24)
         self.scan_subscriber = rospy.Subscriber(rospy.get_param('~scan_topic', '/diff_drive_robot/laser'),
                                                 LaserScan, self.scan_cb, queue_size=1)

@@ -72,13 +72,15 @@ def test_png_loads(tmp_path):
 
 @pytest.mark.parametrize('text, message', [
     (YAML.replace('resolution: 0.05\n', ''), 'The map does not contain a resolution tag or it is invalid.'),
-    (YAML.replace('resolution: 0.05', 'resolution: abc'), 'The map does not contain a resolution tag or it is invalid.'),
+    (YAML.replace('resolution: 0.05', 'resolution: abc'),
+     'The map does not contain a resolution tag or it is invalid.'),
     (YAML.replace('resolution: 0.05', 'resolution: -1'), 'resolution must be > 0'),
     (YAML.replace('negate: 0\n', ''), 'The map does not contain a negate tag or it is invalid.'),
     (YAML.replace('occupied_thresh: 0.65\n', ''), 'The map does not contain an occupied_thresh tag or it is invalid.'),
     (YAML.replace('free_thresh: 0.196', 'free_thresh: 0.9'), 'invalid thresholds'),
     (YAML.replace('occupied_thresh: 0.65', 'occupied_thresh: 1.5'), 'invalid thresholds'),
-    (YAML.replace('origin: [-1.0, -2.0, 0.5]', 'origin: [1, 2]'), 'The map does not contain an origin tag or it is invalid.'),
+    (YAML.replace('origin: [-1.0, -2.0, 0.5]', 'origin: [1, 2]'),
+     'The map does not contain an origin tag or it is invalid.'),
     (YAML.replace('image: {image}\n', ''), 'The map does not contain an image tag or it is invalid.'),
     (YAML.replace('image: {image}', 'image: ""'), 'The image tag cannot be an empty string.'),
     (YAML + 'mode: fancy\n', 'Invalid mode tag "fancy".'),

@@ -29,18 +29,23 @@ class MapConfig:
     mode: str = TRINARY
 
 
+def _no_tag(key):
+    """The original's error for a missing or invalid number tag."""
+    return MapError('The map does not contain %s %s tag or it is invalid.' % ('an' if key[0] in 'aeiou' else 'a', key))
+
+
 def _number(doc, key, kind=float):
     if key not in doc:
-        raise MapError('The map does not contain %s %s tag or it is invalid.' % ('an' if key[0] in 'aeiou' else 'a', key))
+        raise _no_tag(key)
     value = doc[key]
     if isinstance(value, bool) and kind is float:
-        raise MapError('The map does not contain %s %s tag or it is invalid.' % ('an' if key[0] in 'aeiou' else 'a', key))
+        raise _no_tag(key)
     try:
         value = kind(value)
     except (TypeError, ValueError):
-        raise MapError('The map does not contain %s %s tag or it is invalid.' % ('an' if key[0] in 'aeiou' else 'a', key))
+        raise _no_tag(key)
     if kind is float and not math.isfinite(value):
-        raise MapError('The map does not contain %s %s tag or it is invalid.' % ('an' if key[0] in 'aeiou' else 'a', key))
+        raise _no_tag(key)
     return value
 
 

@@ -52,7 +52,8 @@ def parse_value(param, text):
         raise ParamValueError('value "%s" of "%s" is not %s' % (text, name, 'an int' if kind == 'int' else 'a double'))
     lo, hi = param.get('min'), param.get('max')
     if (lo is not None and value < lo) or (hi is not None and value > hi):
-        raise ParamValueError('value %s of "%s" is out of range [%s, %s]' % (text, name, bound_text(lo), bound_text(hi)))
+        raise ParamValueError('value %s of "%s" is out of range [%s, %s]'
+                              % (text, name, bound_text(lo), bound_text(hi)))
     return value
 
 

@@ -268,7 +268,8 @@ class ParamPlugin(Plugin):
         client = self._clients.get(node)
         if client is None:
             return
-        path = path or QFileDialog.getSaveFileName(self._widget, 'Save parameters to file...', '.', 'YAML file {.yaml} (*.yaml)')[0]
+        path = path or QFileDialog.getSaveFileName(self._widget, 'Save parameters to file...', '.',
+                                                   'YAML file {.yaml} (*.yaml)')[0]
         if path:
             with open(path, 'w') as f:
                 yaml.dump(dict(client.get_configuration(timeout=5.0)), f)

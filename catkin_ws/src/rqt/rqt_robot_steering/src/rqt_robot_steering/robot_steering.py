@@ -96,10 +96,13 @@ class RobotSteering(Plugin):
         w.angular_slider.valueChanged.connect(self._on_angular)
         w.increase_x_linear_push_button.pressed.connect(lambda: self._step(w.linear_slider, w.linear_slider.pageStep()))
         w.reset_x_linear_push_button.pressed.connect(lambda: w.linear_slider.setValue(0))
-        w.decrease_x_linear_push_button.pressed.connect(lambda: self._step(w.linear_slider, -w.linear_slider.pageStep()))
-        w.increase_z_angular_push_button.pressed.connect(lambda: self._step(w.angular_slider, w.angular_slider.pageStep()))
+        w.decrease_x_linear_push_button.pressed.connect(
+            lambda: self._step(w.linear_slider, -w.linear_slider.pageStep()))
+        w.increase_z_angular_push_button.pressed.connect(
+            lambda: self._step(w.angular_slider, w.angular_slider.pageStep()))
         w.reset_z_angular_push_button.pressed.connect(lambda: w.angular_slider.setValue(0))
-        w.decrease_z_angular_push_button.pressed.connect(lambda: self._step(w.angular_slider, -w.angular_slider.pageStep()))
+        w.decrease_z_angular_push_button.pressed.connect(
+            lambda: self._step(w.angular_slider, -w.angular_slider.pageStep()))
         w.max_x_linear_double_spin_box.valueChanged.connect(lambda v: w.linear_slider.setMaximum(slider_limit(v)))
         w.min_x_linear_double_spin_box.valueChanged.connect(lambda v: w.linear_slider.setMinimum(slider_limit(v)))
         w.max_z_angular_double_spin_box.valueChanged.connect(lambda v: w.angular_slider.setMaximum(slider_limit(v)))

@@ -5,7 +5,8 @@ Lookup order for `model://NAME` (as gzserver with gazebo_ros): the directories g
 then the GAZEBO_MODEL_PATH entries (colon separated), ~/.gazebo/models, ode_sim's own model
 library `<ode_sim package>/models`, then Gazebo's model database (GAZEBO_MODEL_DATABASE_URI,
 modeldb.py: downloaded once into ~/.gazebo/models). World files: the path itself, then
-GAZEBO_RESOURCE_PATH entries, then the ode_sim package directory (so `worlds/empty.world` is ode_sim's `worlds/empty.world`).
+GAZEBO_RESOURCE_PATH entries, then the ode_sim package directory (so `worlds/empty.world` is
+ode_sim's `worlds/empty.world`).
 """
 import os
 import xml.etree.ElementTree as ET
