@@ -8,7 +8,9 @@ Follows what Gazebo classic does when it spawns a URDF (sdformat's URDF->SDF con
   converter's "urdf2sdf: link[NAME] has no inertia, not modeled in sdf"): a warning here;
 - a root link named 'world' fixes the model to the world.
 Link poses come from forward kinematics at zero joint positions; the model frame is the root
-link frame. The lumping and the links and joints it yields: urdf_lump.py.
+link frame. The lumping and the links and joints it yields: urdf_lump.py. The kinematic tree
+(its one root, a loop) is the one urdf_tree.py reads for the model checker and the graders too;
+here every element is also read strictly, the first problem being the error.
 """
 import math
 import os
@@ -22,6 +24,7 @@ from ode_sim.description.xmldoc import ParseContext, parse_xml
 from ode_sim.description.transforms import Pose
 from ode_sim.description.urdf_ext import GazeboExtensions
 from ode_sim.description.urdf_lump import FixedJointLumping
+from ode_sim.description.urdf_tree import read_tree
 
 
 class _ULink:
@@ -241,23 +244,9 @@ class _Parser(GazeboExtensions, FixedJointLumping):
         return j
 
     # -------------------------------------------------------------------- main
-    def parse(self):
-        root = self.doc.root
-        if root.tag != 'robot':
-            raise self.err(root, 'expected <robot> as the root element, got <%s>' % root.tag)
-        for el in root.iter():
-            if isinstance(el.tag, str) and el.tag.startswith('xacro:'):
-                raise self.err(el, '<%s> found: this is a xacro file, expand it with xacro '
-                                   'first' % el.tag)
-        robot_name = (root.get('name') or '').strip()
-        if not robot_name:
-            raise self.err(root, '<robot> needs a name attribute')
-        for m in root.findall('material'):
-            name = self.attr(m, 'name', 'material')
-            c = m.find('color')
-            if c is not None:
-                self.materials[name] = tuple(self.nums(c, 'rgba', 4))
-
+    def parse_links_and_joints(self, root):
+        """(links, document order of the links, joints) read strictly: the first problem is a
+        one-line error at its element."""
         links = {}
         order = []
         for el in root.findall('link'):
@@ -280,24 +269,43 @@ class _Parser(GazeboExtensions, FixedJointLumping):
             child.parent_joint = j
             links[j.parent].child_joints.append(j)
             joints[j.name] = j
-        roots = [n for n in order if links[n].parent_joint is None]
+        return links, order, joints
+
+    def root_link(self, root, links):
+        """The name of the one root link: the kinematic tree as urdf_tree reads it, a one-line
+        error for more roots than one or a loop."""
+        tree = read_tree(root)
+        roots = tree.roots()
         if len(roots) > 1:
             raise self.err(root, 'the robot has %d root links (%s): every link but one needs a '
                                  'parent joint' % (len(roots), ', '.join(repr(r) for r in roots)))
         if not roots:
             raise self.err(root, 'the joints form a loop: no root link')
-        root_name = roots[0]
-        reached = set()
-        stack = [root_name]
-        while stack:
-            n = stack.pop()
-            reached.add(n)
-            stack.extend(j.child for j in links[n].child_joints)
-        if len(reached) != len(links):
-            loop = [n for n in order if n not in reached]
-            raise self.err(links[loop[0]].parent_joint.el,
-                           "the joints form a loop through link '%s' (joint '%s')"
-                           % (loop[0], links[loop[0]].parent_joint.name))
+        if tree.loop:
+            joint = links[tree.loop[0]].parent_joint
+            raise self.err(joint.el, "the joints form a loop through link '%s' (joint '%s')"
+                           % (tree.loop[0], joint.name))
+        return roots[0]
+
+    def parse(self):
+        root = self.doc.root
+        if root.tag != 'robot':
+            raise self.err(root, 'expected <robot> as the root element, got <%s>' % root.tag)
+        for el in root.iter():
+            if isinstance(el.tag, str) and el.tag.startswith('xacro:'):
+                raise self.err(el, '<%s> found: this is a xacro file, expand it with xacro '
+                                   'first' % el.tag)
+        robot_name = (root.get('name') or '').strip()
+        if not robot_name:
+            raise self.err(root, '<robot> needs a name attribute')
+        for m in root.findall('material'):
+            name = self.attr(m, 'name', 'material')
+            c = m.find('color')
+            if c is not None:
+                self.materials[name] = tuple(self.nums(c, 'rgba', 4))
+
+        links, order, joints = self.parse_links_and_joints(root)
+        root_name = self.root_link(root, links)
 
         model = Model(name=self.model_name or robot_name, source=self.source)
         # an <origin> right under <robot> (not in the URDF spec; gazebo_ros' updateURDFModelPose
