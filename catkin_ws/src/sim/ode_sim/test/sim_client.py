@@ -13,9 +13,11 @@ from std_srvs.srv import Empty
 
 ROBOT = """<?xml version="1.0"?>
 <robot name="arm">
-  <link name="base"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+  <link name="base"><inertial><mass value="5"/>
+      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
     <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision></link>
-  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
     <collision><origin xyz="0.25 0 0"/><geometry><box size="0.5 0.05 0.05"/></geometry></collision></link>
   <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/>
     <origin xyz="0 0 0.3"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="10" velocity="1"/></joint>

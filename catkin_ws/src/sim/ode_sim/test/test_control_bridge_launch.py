@@ -19,13 +19,16 @@ URDF = """<?xml version="1.0"?>
 <robot name="arm">
   <link name="world"/>
   <joint name="fix" type="fixed"><parent link="world"/><child link="base"/></joint>
-  <link name="base"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+  <link name="base"><inertial><mass value="5"/>
+      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
     <collision><geometry><box size="0.2 0.2 0.2"/></geometry></collision></link>
-  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
     <collision><origin xyz="0.25 0 0"/><geometry><box size="0.5 0.04 0.04"/></geometry></collision></link>
   <joint name="arm_joint" type="revolute"><parent link="base"/><child link="arm"/>
     <origin xyz="0 0.2 1.0"/><axis xyz="0 1 0"/><limit lower="-2" upper="2" effort="20" velocity="3"/></joint>
-  <link name="wheel"><inertial><mass value="0.3"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+  <link name="wheel"><inertial><mass value="0.3"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
     <collision><geometry><cylinder radius="0.05" length="0.02"/></geometry></collision></link>
   <joint name="wheel_joint" type="continuous"><parent link="base"/><child link="wheel"/>
     <origin xyz="0 -0.2 1.0" rpy="1.5708 0 0"/><axis xyz="0 0 1"/><limit effort="5" velocity="10"/></joint>
