@@ -60,8 +60,8 @@ def test_student_builds_a_scene_in_the_window(roscore, screen, tmp_path):
         for name in ('before.png', 'scene.png'):
             if (tmp_path / name).exists():
                 keep(str(tmp_path / name), 'ode_sim_gui_student_' + name)
-        assert run.returncode == 0, 'scenario failed (log %s):\n%s' % (tmp_path / 'scenario.log',
-                                                                      run.stdout[-6000:] + run.stderr[-3000:])
+        assert run.returncode == 0, 'scenario failed (log %s):\n%s' % (
+            tmp_path / 'scenario.log', run.stdout[-6000:] + run.stderr[-3000:])
     finally:
         sim.stop()
     exp = json.loads((tmp_path / 'expected.json').read_text())
