@@ -104,7 +104,8 @@ while not rospy.is_shutdown() and rospy.get_time() < deadline and len(frames) < 
     rospy.sleep(0.2)
 rospy.sleep(1.0)
 desc = rospy.get_param('/robot_description', '')
-print(yaml.safe_dump({'frames': sorted(list(f) for f in frames), 'desc': desc[:20000]}, default_flow_style=True, width=10**9))
+print(yaml.safe_dump({'frames': sorted(list(f) for f in frames), 'desc': desc[:20000]},
+                     default_flow_style=True, width=10**9))
 '''
         res = S.run_probe(probe, env, timeout=90)
     finally:

@@ -56,7 +56,8 @@ def test_robot_config_defaults_on_emulated_devices(roscore, tmp_path):
                            'lidar_port:=' + lidar_port], env=env, log=str(tmp_path / 'launch.log'))
             wait_for(lambda: DIPLOMA_NODES <= set(subprocess.run(
                 ['rosnode', 'list'], env=env, capture_output=True, text=True, timeout=60).stdout.split()),
-                120, interval=1.0, what='the diploma\'s nodes %s; launch log:\n%s' % (sorted(DIPLOMA_NODES), launch.output()[-3000:]))
+                120, interval=1.0,
+                what='the diploma\'s nodes %s; launch log:\n%s' % (sorted(DIPLOMA_NODES), launch.output()[-3000:]))
 
             scan = echo(env, '/scan', launch=launch)
             assert 'frame_id: "laser"' in scan, scan[:500]

@@ -1,6 +1,7 @@
 """The diploma's simulation.launch headless on a private roscore (gui:=false rviz:=false
-teleop:=false drive:=skid_steer; drive:=ros_control, the default, is drive.test): the robot dropped from 0.85 m lands on its wheels in the office, the RPLidar
-scan arrives, the skid-steer drive moves it on /cmd_vel."""
+teleop:=false drive:=skid_steer; drive:=ros_control, the default, is drive.test): the robot
+dropped from 0.85 m lands on its wheels in the office, the RPLidar scan arrives, the skid-steer
+drive moves it on /cmd_vel."""
 import math
 
 import pytest

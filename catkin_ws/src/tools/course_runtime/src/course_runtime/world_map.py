@@ -1,6 +1,7 @@
-"""Test and bench helper shared by the navigation packages and the demo: the occupancy grid of an SDF world (box, cylinder and sphere
-collisions cut at the robot's height band), read from the world file and the model library
-(`model://` from ode_sim's models/ and GAZEBO_MODEL_PATH), no simulator code involved.
+"""Test and bench helper shared by the navigation packages and the demo: the occupancy grid of an
+SDF world (box, cylinder and sphere collisions cut at the robot's height band), read from the
+world file and the model library (`model://` from ode_sim's models/ and GAZEBO_MODEL_PATH), no
+simulator code involved.
 
 Values: 100 occupied, 0 free (the whole area is known), as map_server serves a saved map.
 """
