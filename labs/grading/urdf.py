@@ -17,7 +17,7 @@ class ModelError(Exception):
 def _numbers(text, n, what):
     v = urdf_tree.floats(text)
     if v is None or len(v) != n:
-        raise ModelError('%s: %r is not %d numbers' % (what, text, n))
+        raise ModelError('%s: %r is not %s' % (what, text, 'a number' if n == 1 else '%d numbers' % n))
     return v
 
 

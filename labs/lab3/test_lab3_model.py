@@ -108,6 +108,32 @@ def test_parse_errors_are_one_line():
         root_link(parse_urdf(robot(link('a'), link('b'))))
     with pytest.raises(ModelError, match='box size'):
         parse_urdf(robot(link('a', dims='0.1 0.1')))
+    with pytest.raises(ModelError, match=r"^the root element is <sdf>, not <robot>$"):
+        parse_urdf('<sdf/>')
+    with pytest.raises(ModelError, match=r"^link a collision cylinder radius: 'r' is not a number$"):
+        parse_urdf(robot(link('a', 'cylinder').replace('radius="0.03"', 'radius="r"')))
+    with pytest.raises(ModelError, match=r"^origin rpy: '0 0' is not 3 numbers$"):
+        parse_urdf(robot(link('a', rpy='0 0')))
+    with pytest.raises(ModelError, match=r'^link a: inertial values are not numbers$'):
+        parse_urdf(robot(link('a', mass='heavy')))
+    with pytest.raises(ModelError, match=r'^the model has no <link>$'):
+        parse_urdf(robot())
+
+
+def test_parse_urdf_view():
+    m = parse_urdf(robot(link('a', rpy='0 0 1'), link('b', 'sphere', visual=False, inertial=False),
+                         joint('j', 'revolute', 'a', 'b', mimic=True),
+                         '<link name="c"><collision><geometry/></collision>'
+                         '<inertial><inertia ixx="1" iyy="2"/></inertial></link>'))
+    assert m['name'] == 'r' and list(m['links']) == ['a', 'b', 'c']
+    assert m['links']['a'] == {'collisions': [('box', [0.1, 0.1, 0.1], (0.0, 0.0, 1.0))], 'visual': True,
+                               'inertial': {'mass': 0.1, 'inertia': {'ixx': 1e-4, 'iyy': 1e-4, 'izz': 1e-4}}}
+    assert m['links']['b'] == {'collisions': [('sphere', [0.02], (0.0, 0.0, 0.0))], 'visual': False,
+                               'inertial': None}
+    c = m['links']['c']
+    assert c['collisions'] == [] and c['inertial']['mass'] is None
+    assert c['inertial']['inertia']['iyy'] == 2 and c['inertial']['inertia']['izz'] != c['inertial']['inertia']['izz']
+    assert m['joints'] == {'j': {'type': 'revolute', 'parent': 'a', 'child': 'b', 'mimic': True}}
 
 
 def test_rviz_config_and_command_line():
