@@ -101,6 +101,19 @@ def propagate(costs, goal, start=None, astar=False, extra=None, native=True):
     return np.array(pot).reshape(ny, nx)
 
 
+def _slope(before, p, after):
+    """Downhill slope along one axis at a cell of potential P between the neighbours BEFORE and
+    AFTER: the central difference where both are defined, else one-sided; a missing neighbour
+    (POT_HIGH) is an obstacle, 0 with neither."""
+    if before < POT_HIGH and after < POT_HIGH:
+        return (before - after) / 2.0
+    if before < POT_HIGH:
+        return before - p
+    if after < POT_HIGH:
+        return p - after
+    return 0.0
+
+
 def _gradient(pot, x, y):
     """navfn's gradCell at an integer cell: normalised (gx, gy) pointing downhill."""
     ny, nx = pot.shape
@@ -112,22 +125,8 @@ def _gradient(pot, x, y):
         if 0 <= xx < nx and 0 <= yy < ny:
             return pot[yy, xx]
         return POT_HIGH
-    l, r, u, d = val(x - 1, y), val(x + 1, y), val(x, y - 1), val(x, y + 1)
-    # central differences where defined, else one-sided; a missing neighbour is an obstacle
-    gx = 0.0
-    if l < POT_HIGH and r < POT_HIGH:
-        gx = (l - r) / 2.0
-    elif l < POT_HIGH:
-        gx = l - p
-    elif r < POT_HIGH:
-        gx = p - r
-    gy = 0.0
-    if u < POT_HIGH and d < POT_HIGH:
-        gy = (u - d) / 2.0
-    elif u < POT_HIGH:
-        gy = u - p
-    elif d < POT_HIGH:
-        gy = p - d
+    gx = _slope(val(x - 1, y), p, val(x + 1, y))
+    gy = _slope(val(x, y - 1), p, val(x, y + 1))
     n = math.hypot(gx, gy)
     if n == 0:
         return None
