@@ -3,9 +3,10 @@
 
 Subscribes to the camera image (~image_topic, default /diff_drive_robot/camera1/image_raw, the
 textbook's) and the lidar scan (~scan_topic, default /diff_drive_robot/laser). Each image is
-converted with cv_bridge to an OpenCV BGR frame, its Canny edges (~low, ~high thresholds) are published as sensor_msgs/Image mono8 on ~edges
-and, when a display is available (DISPLAY set and ~show true), both are shown with
-cv2.imshow. Image and scan statistics are logged once per ~log_period seconds.
+converted with cv_bridge to an OpenCV BGR frame, its Canny edges (~low, ~high thresholds) are
+published as sensor_msgs/Image mono8 on ~edges and, when a display is available (DISPLAY set and
+~show true), both are shown with cv2.imshow. Image and scan statistics are logged once per
+~log_period seconds.
 
     rosrun my_robot_simulation_sensors sensor_data_proc.py
     rosrun my_robot_simulation_sensors sensor_data_proc.py _image_topic:=/camera/image_raw   # another camera
