@@ -56,7 +56,8 @@ def test_talker_listener_and_rate(roscore, tmp_path):
         # `rostopic hz` reports ~10 Hz
         hz = Proc(['rostopic', 'hz', '/chatter'], env=roscore.env, log=str(tmp_path / 'hz.log'))
         try:
-            rates = lambda: re.findall(r'average rate: ([\d.]+)', hz.output())
+            def rates():
+                return re.findall(r'average rate: ([\d.]+)', hz.output())
             wait_for(lambda: len(rates()) >= 3, 30, what='three `rostopic hz` reports')
         finally:
             hz.stop()

@@ -291,7 +291,9 @@ class ImageView(Plugin):
 
     def restore_settings(self, plugin_settings, instance_settings):
         s = instance_settings
-        t = lambda k, d=False: s.value(k, d) in [True, 'true']
+
+        def t(k, d=False):
+            return s.value(k, d) in [True, 'true']
         self.zoom_1_push_button.setChecked(t('zoom1'))
         self.dynamic_range_check_box.setChecked(t('dynamic_range'))
         try:

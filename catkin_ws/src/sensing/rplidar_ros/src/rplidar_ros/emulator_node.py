@@ -30,8 +30,10 @@ def main():
     if health is None:
         rospy.logfatal("rplidar_emulator: parameter ~health must be 'ok', 'warning' or 'error'")
         return 1
-    make = lambda: A1Device(room, float(g('~scan_frequency', 10.0)), (int(fw[0]), int(fw[1])),
-                            health=health, garbage_every=float(g('~garbage_every', 0.0)))
+
+    def make():
+        return A1Device(room, float(g('~scan_frequency', 10.0)), (int(fw[0]), int(fw[1])),
+                        health=health, garbage_every=float(g('~garbage_every', 0.0)))
     vanish_after = float(g('~vanish_after', 0.0))
     vanish_duration = float(g('~vanish_duration', 2.0))
     unplug = {'requested': False}
