@@ -14,13 +14,6 @@ from my_robot_model import model_check
 TOL = 1e-6
 
 
-def _origin(joint):
-    o = joint.find('origin')
-    xyz = [float(v) for v in (o.get('xyz', '0 0 0') if o is not None else '0 0 0').split()]
-    rpy = [float(v) for v in (o.get('rpy', '0 0 0') if o is not None else '0 0 0').split()]
-    return xyz, rpy
-
-
 def quaternion_from_rpy(roll, pitch, yaw):
     cr, sr = math.cos(roll / 2), math.sin(roll / 2)
     cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
@@ -52,12 +45,11 @@ def main(package, timeout=60.0):
                 time.sleep(0.2)
             self.assertEqual(missing, [], 'no transform %s -> these links' % root)
 
-            for name, j in sorted(model.joints.items()):
-                if j.get('type') != 'fixed':
+            for name, j in sorted(model.tree.joints.items()):   # urdf_tree.Joint
+                if j.type != 'fixed':
                     continue
-                parent, child = j.find('parent').get('link'), j.find('child').get('link')
-                t = buf.lookup_transform(parent, child, rospy.Time(0)).transform
-                xyz, rpy = _origin(j)
+                t = buf.lookup_transform(j.parent, j.child, rospy.Time(0)).transform
+                xyz, rpy = j.origin.xyz, j.origin.rpy
                 got = (t.translation.x, t.translation.y, t.translation.z)
                 for a, b in zip(got, xyz):
                     self.assertAlmostEqual(a, b, delta=TOL, msg='joint %s: %s != origin %s' % (name, got, xyz))
