@@ -212,9 +212,8 @@ def read_inertial(el):
 
 
 def read_link(el):
-    link = Link(el, el.get('name'), [read_shape(c) for c in el.findall('collision')],
+    return Link(el, el.get('name'), [read_shape(c) for c in el.findall('collision')],
                 [read_shape(v) for v in el.findall('visual')], read_inertial(el.find('inertial')))
-    return link
 
 
 def read_joint(el):
