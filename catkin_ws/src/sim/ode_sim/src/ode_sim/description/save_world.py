@@ -65,6 +65,14 @@ def _sub(parent, tag, text=None, **attrib):
     return el
 
 
+def _fill(el, **children):
+    """EL with a child a keyword, in order, its text the value (a None value: no child)."""
+    for tag, text in children.items():
+        if text is not None:
+            _sub(el, tag, text)
+    return el
+
+
 def _flag(b):
     return '1' if b else '0'
 
@@ -86,43 +94,32 @@ def _set_pose(el, pose):
 # world parts
 
 def physics_element(parent, physics):
-    p = _sub(parent, 'physics', name='default_physics', default='0', type='ode')
-    _sub(p, 'max_step_size', num(physics.max_step_size))
-    _sub(p, 'real_time_factor', num(physics.real_time_factor))
-    _sub(p, 'real_time_update_rate', num(physics.real_time_update_rate))
-    _sub(p, 'max_contacts', str(int(physics.max_contacts)))
+    p = _fill(_sub(parent, 'physics', name='default_physics', default='0', type='ode'),
+              max_step_size=num(physics.max_step_size),
+              real_time_factor=num(physics.real_time_factor),
+              real_time_update_rate=num(physics.real_time_update_rate),
+              max_contacts=str(int(physics.max_contacts)))
     ode = _sub(p, 'ode')
-    solver = _sub(ode, 'solver')
-    _sub(solver, 'type', physics.solver_type)
-    _sub(solver, 'iters', str(int(physics.iters)))
-    _sub(solver, 'sor', num(physics.sor))
-    c = _sub(ode, 'constraints')
-    _sub(c, 'cfm', num(physics.cfm))
-    _sub(c, 'erp', num(physics.erp))
-    _sub(c, 'contact_max_correcting_vel', num(physics.contact_max_correcting_vel))
-    _sub(c, 'contact_surface_layer', num(physics.contact_surface_layer))
+    _fill(_sub(ode, 'solver'), type=physics.solver_type, iters=str(int(physics.iters)),
+          sor=num(physics.sor))
+    _fill(_sub(ode, 'constraints'), cfm=num(physics.cfm), erp=num(physics.erp),
+          contact_max_correcting_vel=num(physics.contact_max_correcting_vel),
+          contact_surface_layer=num(physics.contact_surface_layer))
     return p
 
 
 def scene_element(parent, scene):
-    s = _sub(parent, 'scene')
-    _sub(s, 'ambient', nums(scene.ambient))
-    _sub(s, 'background', nums(scene.background))
-    _sub(s, 'shadows', _flag(scene.shadows))
-    return s
+    return _fill(_sub(parent, 'scene'), ambient=nums(scene.ambient),
+                 background=nums(scene.background), shadows=_flag(scene.shadows))
 
 
 def light_element(parent, light, attenuation=None):
-    el = _sub(parent, 'light', name=light.name, type=light.type)
-    _sub(el, 'cast_shadows', _flag(light.cast_shadows))
-    _sub(el, 'pose', pose_text(light.pose))
-    _sub(el, 'diffuse', nums(light.diffuse))
-    _sub(el, 'specular', nums(light.specular))
-    att = _sub(el, 'attenuation')
-    _sub(att, 'range', num(light.attenuation_range))
+    el = _fill(_sub(parent, 'light', name=light.name, type=light.type),
+               cast_shadows=_flag(light.cast_shadows), pose=pose_text(light.pose),
+               diffuse=nums(light.diffuse), specular=nums(light.specular))
+    att = _fill(_sub(el, 'attenuation'), range=num(light.attenuation_range))
     if attenuation is not None:
-        for tag, v in zip(('constant', 'linear', 'quadratic'), attenuation):
-            _sub(att, tag, num(v))
+        _fill(att, **{tag: num(v) for tag, v in zip(('constant', 'linear', 'quadratic'), attenuation)})
     _sub(el, 'direction', nums(light.direction))
     return el
 
@@ -133,27 +130,20 @@ def light_element(parent, light, attenuation=None):
 def geometry_element(parent, g):
     el = _sub(parent, 'geometry')
     if g.kind == 'box':
-        _sub(_sub(el, 'box'), 'size', nums(g.size))
+        _fill(_sub(el, 'box'), size=nums(g.size))
     elif g.kind == 'cylinder':
-        c = _sub(el, 'cylinder')
-        _sub(c, 'radius', num(g.radius))
-        _sub(c, 'length', num(g.length))
+        _fill(_sub(el, 'cylinder'), radius=num(g.radius), length=num(g.length))
     elif g.kind == 'sphere':
-        _sub(_sub(el, 'sphere'), 'radius', num(g.radius))
+        _fill(_sub(el, 'sphere'), radius=num(g.radius))
     elif g.kind == 'plane':
-        p = _sub(el, 'plane')
-        _sub(p, 'normal', nums(g.normal))
-        _sub(p, 'size', nums(g.plane_size))
+        _fill(_sub(el, 'plane'), normal=nums(g.normal), size=nums(g.plane_size))
     elif g.kind == 'mesh':
-        m = _sub(el, 'mesh')
         uri = g.uri
         if not uri.startswith(('model://', 'package://', 'file://')) and g.filename:
             uri = 'file://' + g.filename     # a relative path would not survive a move
-        _sub(m, 'uri', uri)
+        m = _fill(_sub(el, 'mesh'), uri=uri)
         if g.submesh:
-            sm = _sub(m, 'submesh')
-            _sub(sm, 'name', g.submesh)
-            _sub(sm, 'center', _flag(g.center))
+            _fill(_sub(m, 'submesh'), name=g.submesh, center=_flag(g.center))
         _sub(m, 'scale', nums(g.scale))
     else:
         raise ValueError('geometry kind %r cannot be saved' % g.kind)
@@ -162,21 +152,12 @@ def geometry_element(parent, g):
 
 def surface_element(parent, s):
     el = _sub(parent, 'surface')
-    fr = _sub(_sub(el, 'friction'), 'ode')
-    _sub(fr, 'mu', num(s.mu1))
-    _sub(fr, 'mu2', num(s.mu2))
-    if s.fdir1 is not None:
-        _sub(fr, 'fdir1', nums(s.fdir1))
-    _sub(fr, 'slip1', num(s.slip1))
-    _sub(fr, 'slip2', num(s.slip2))
-    ct = _sub(_sub(el, 'contact'), 'ode')
-    _sub(ct, 'kp', num(s.kp))
-    _sub(ct, 'kd', num(s.kd))
-    _sub(ct, 'max_vel', num(s.max_vel))
-    _sub(ct, 'min_depth', num(s.min_depth))
-    b = _sub(el, 'bounce')
-    _sub(b, 'restitution_coefficient', num(s.bounce))
-    _sub(b, 'threshold', num(s.bounce_threshold))
+    _fill(_sub(_sub(el, 'friction'), 'ode'), mu=num(s.mu1), mu2=num(s.mu2),
+          fdir1=None if s.fdir1 is None else nums(s.fdir1), slip1=num(s.slip1), slip2=num(s.slip2))
+    _fill(_sub(_sub(el, 'contact'), 'ode'), kp=num(s.kp), kd=num(s.kd), max_vel=num(s.max_vel),
+          min_depth=num(s.min_depth))
+    _fill(_sub(el, 'bounce'), restitution_coefficient=num(s.bounce),
+          threshold=num(s.bounce_threshold))
     return el
 
 
@@ -191,18 +172,13 @@ def material_element(parent, v):
         return None
     el = _sub(parent, 'material')
     if v.material_name:
-        sc = _sub(el, 'script')
-        _sub(sc, 'uri', GAZEBO_MATERIAL)
-        _sub(sc, 'name', v.material_name)
+        _fill(_sub(el, 'script'), uri=GAZEBO_MATERIAL, name=v.material_name)
     color = tuple(v.color)
     ambient = mat.ambient if mat is not None and mat.ambient is not None else color
-    _sub(el, 'ambient', nums(ambient))
-    _sub(el, 'diffuse', nums(color))
     spec = tuple(mat.specular) if mat is not None else (0.1, 0.1, 0.1)
-    _sub(el, 'specular', nums(tuple(spec[:3]) + (1.0,)))
     emis = tuple(mat.emissive) if mat is not None else (0.0, 0.0, 0.0)
-    _sub(el, 'emissive', nums(tuple(emis[:3]) + (1.0,)))
-    return el
+    return _fill(el, ambient=nums(ambient), diffuse=nums(color),
+                 specular=nums(tuple(spec[:3]) + (1.0,)), emissive=nums(tuple(emis[:3]) + (1.0,)))
 
 
 def _with_namespace(el, namespace):
@@ -218,26 +194,19 @@ def _with_namespace(el, namespace):
 
 
 def link_element(parent, link, static, namespace=''):
-    el = _sub(parent, 'link', name=link.name)
-    _sub(el, 'pose', pose_text(link.pose))
+    el = _fill(_sub(parent, 'link', name=link.name), pose=pose_text(link.pose))
     ine = link.inertial
     if ine is not None and not static:
-        i = _sub(el, 'inertial')
-        _sub(i, 'pose', pose_text(ine.pose))
-        _sub(i, 'mass', num(ine.mass))
-        t = _sub(i, 'inertia')
-        for tag in ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz'):
-            _sub(t, tag, num(getattr(ine, tag)))
+        i = _fill(_sub(el, 'inertial'), pose=pose_text(ine.pose), mass=num(ine.mass))
+        _fill(_sub(i, 'inertia'), **{tag: num(getattr(ine, tag))
+                                     for tag in ('ixx', 'ixy', 'ixz', 'iyy', 'iyz', 'izz')})
     for c in link.collisions:
-        ce = _sub(el, 'collision', name=c.name)
-        _sub(ce, 'pose', pose_text(c.pose))
-        if c.laser_retro:
-            _sub(ce, 'laser_retro', num(c.laser_retro))
+        ce = _fill(_sub(el, 'collision', name=c.name), pose=pose_text(c.pose),
+                   laser_retro=num(c.laser_retro) if c.laser_retro else None)
         geometry_element(ce, c.geometry)
         surface_element(ce, c.surface)
     for v in link.visuals:
-        ve = _sub(el, 'visual', name=v.name)
-        _sub(ve, 'pose', pose_text(v.pose))
+        ve = _fill(_sub(el, 'visual', name=v.name), pose=pose_text(v.pose))
         geometry_element(ve, v.geometry)
         material_element(ve, v)
     for s in link.sensors:
@@ -247,41 +216,32 @@ def link_element(parent, link, static, namespace=''):
         se.set('name', s.name)
         _set_pose(se, s.pose)
         el.append(se)
-    _sub(el, 'gravity', _flag(link.gravity))
-    _sub(el, 'self_collide', _flag(link.self_collide))
-    _sub(el, 'kinematic', _flag(link.kinematic))
-    return el
+    return _fill(el, gravity=_flag(link.gravity), self_collide=_flag(link.self_collide),
+                 kinematic=_flag(link.kinematic))
 
 
 def joint_element(parent, joint, model):
     el = _sub(parent, 'joint', name=joint.name,
               type='revolute' if joint.type == 'continuous' else joint.type)
-    _sub(el, 'parent', joint.parent)
-    _sub(el, 'child', joint.child)
     parent_pose = Pose() if joint.parent == 'world' else model.link(joint.parent).pose
     frame = parent_pose * joint.origin          # joint frame in the model frame
-    _sub(el, 'pose', pose_text(model.link(joint.child).pose.inverse() * frame))
+    _fill(el, parent=joint.parent, child=joint.child,
+          pose=pose_text(model.link(joint.child).pose.inverse() * frame))
     if joint.type in ('fixed', 'ball'):
         return el
-    ax = _sub(el, 'axis')
-    _sub(ax, 'xyz', nums(joint.axis))
-    _sub(ax, 'use_parent_model_frame', '1')
-    lim = _sub(ax, 'limit')
-    _sub(lim, 'lower', num(-NO_LIMIT if joint.lower is None else joint.lower))
-    _sub(lim, 'upper', num(NO_LIMIT if joint.upper is None else joint.upper))
-    _sub(lim, 'effort', num(-1 if joint.effort is None else joint.effort))
-    _sub(lim, 'velocity', num(-1 if joint.velocity is None else joint.velocity))
-    dyn = _sub(ax, 'dynamics')
-    _sub(dyn, 'damping', num(joint.damping))
-    _sub(dyn, 'friction', num(joint.friction))
+    ax = _fill(_sub(el, 'axis'), xyz=nums(joint.axis), use_parent_model_frame='1')
+    _fill(_sub(ax, 'limit'), lower=num(-NO_LIMIT if joint.lower is None else joint.lower),
+          upper=num(NO_LIMIT if joint.upper is None else joint.upper),
+          effort=num(-1 if joint.effort is None else joint.effort),
+          velocity=num(-1 if joint.velocity is None else joint.velocity))
+    _fill(_sub(ax, 'dynamics'), damping=num(joint.damping), friction=num(joint.friction))
     return el
 
 
 def model_element(desc, pose, name=None):
     """A full SDF <model> of a description at `pose` (what Gazebo writes for a robot spawned
     from URDF)."""
-    el = ET.Element('model', name=name or desc.name)
-    _sub(el, 'pose', pose_text(pose))
+    el = _fill(ET.Element('model', name=name or desc.name), pose=pose_text(pose))
     for link in desc.links:
         link_element(el, link, desc.static, desc.robot_namespace)
     for joint in desc.joints:
@@ -289,22 +249,15 @@ def model_element(desc, pose, name=None):
     for p in desc.plugins:
         if p.element is not None:
             el.append(_with_namespace(p.element, desc.robot_namespace))
-    _sub(el, 'static', _flag(desc.static))
-    _sub(el, 'allow_auto_disable', _flag(desc.allow_auto_disable))
-    return el
+    return _fill(el, static=_flag(desc.static), allow_auto_disable=_flag(desc.allow_auto_disable))
 
 
 def saved_model(desc, pose):
     """The element Save World writes for one model at `pose`: <include> for model://, the
     SDF <model> it was given as, or a full <model> built from the description (URDF)."""
     if desc.include_uri:
-        el = ET.Element('include')
-        _sub(el, 'uri', desc.include_uri)
-        _sub(el, 'name', desc.name)
-        _sub(el, 'pose', pose_text(pose))
-        if desc.static:
-            _sub(el, 'static', '1')
-        return el
+        return _fill(ET.Element('include'), uri=desc.include_uri, name=desc.name,
+                     pose=pose_text(pose), static='1' if desc.static else None)
     if desc.sdf_element is not None and not desc.urdf:
         el = copy.deepcopy(desc.sdf_element)
         el.set('name', desc.name)
@@ -353,25 +306,19 @@ def world_element(world, models, gravity=None, sim_time=0.0, real_time=0.0, iter
     for p in world.plugins:
         if p.element is not None:
             w.append(copy.deepcopy(p.element))
-    st = _sub(w, 'state', world_name=world.name)
-    _sub(st, 'sim_time', _time_text(sim_time))
-    _sub(st, 'real_time', _time_text(real_time))
-    _sub(st, 'wall_time', _time_text(time.time() if wall_time is None else wall_time))
-    _sub(st, 'iterations', str(int(iterations)))
+    st = _fill(_sub(w, 'state', world_name=world.name), sim_time=_time_text(sim_time),
+               real_time=_time_text(real_time),
+               wall_time=_time_text(time.time() if wall_time is None else wall_time),
+               iterations=str(int(iterations)))
     for m in models:
-        me = _sub(st, 'model', name=m.name)
-        _sub(me, 'pose', pose_text(poses[m.name]))
-        _sub(me, 'scale', '1 1 1')
+        me = _fill(_sub(st, 'model', name=m.name), pose=pose_text(poses[m.name]), scale='1 1 1')
         for lname, link in m.links.items():
-            le = _sub(me, 'link', name=lname)
-            _sub(le, 'pose', pose_text(link.pose()))
             lin, ang = link.velocity() if link.body is not None else ((0, 0, 0), (0, 0, 0))
-            _sub(le, 'velocity', nums(list(lin) + list(ang)))
-            _sub(le, 'acceleration', '0 0 0 0 0 0')
-            _sub(le, 'wrench', '0 0 0 0 0 0')
+            _fill(_sub(me, 'link', name=lname), pose=pose_text(link.pose()),
+                  velocity=nums(list(lin) + list(ang)), acceleration='0 0 0 0 0 0',
+                  wrench='0 0 0 0 0 0')
     for light in world.lights:
-        le = _sub(st, 'light', name=light.name)
-        _sub(le, 'pose', pose_text(light.pose))
+        _fill(_sub(st, 'light', name=light.name), pose=pose_text(light.pose))
     return sdf
 
 
