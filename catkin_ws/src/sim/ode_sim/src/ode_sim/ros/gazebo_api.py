@@ -36,7 +36,7 @@ from ode_sim.ros.convert import (entity_states_msg, fill_vector, ode_physics_msg
                                  performance_metrics_msg, pose_from_msg, vector)
 from ode_sim.ros.gazebo_forces import ForceServices
 from ode_sim.ros.gazebo_lights import LightServices, light_attenuations
-from ode_sim.ros.gazebo_state import StateServices
+from ode_sim.ros.gazebo_state import SPAWN_REFERENCE_NOT_FOUND, StateServices, failure
 from ode_sim.ros.markers import SceneMarkers
 from ode_sim.ros.plugins.base import NO_WORK
 
@@ -109,8 +109,8 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         self.metrics = rospy.Publisher(n + '/performance_metrics', gm.PerformanceMetrics,
                                        queue_size=10)
         self._metrics_last = None       # (wall, sim) of the last metrics message
-        rospy.Subscriber(n + '/set_link_state', gm.LinkState, self._set_link_state_topic)
-        rospy.Subscriber(n + '/set_model_state', gm.ModelState, self._set_model_state_topic)
+        rospy.Subscriber(n + '/set_link_state', gm.LinkState, self._apply_link_state)
+        rospy.Subscriber(n + '/set_model_state', gm.ModelState, self._apply_model_state)
         self.markers = None
         self._scene = SceneMarkers(scene_frame)
         self._marker_version = -1
@@ -238,11 +238,9 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         name = req.model_name
         if name in self.physics.models:
             return gs.SpawnModelResponse(False, 'SpawnModel: Failure - entity already exists.')
-        ref = self._frame(req.reference_frame)
-        if ref is None:
-            return gs.SpawnModelResponse(
-                False, 'SpawnModel: Failure - reference frame [%s] not found'
-                % req.reference_frame)
+        ref, error = self._reference(req.reference_frame, SPAWN_REFERENCE_NOT_FOUND % req.reference_frame)
+        if error:
+            return gs.SpawnModelResponse(False, error)
         source = 'spawn_%s_model(%s)' % (fmt, name)
         try:
             if fmt == 'urdf':
@@ -275,10 +273,9 @@ class GazeboApi(StateServices, ForceServices, LightServices):
 
     def delete_model(self, req):
         with self.node.lock:
-            m = self.physics.models.get(req.model_name)
-            if m is None:
-                rospy.logerr('DeleteModel: model [%s] does not exist' % req.model_name)
-                return gs.DeleteModelResponse(False, 'DeleteModel: model does not exist')
+            m, error = self._model(req.model_name, 'DeleteModel')
+            if error:
+                return gs.DeleteModelResponse(False, error)
             links = set(m.links.values())
             joints = set(m.joints.values())
             self._wrenches = [j for j in self._wrenches if j.target not in links]
@@ -299,12 +296,9 @@ class GazeboApi(StateServices, ForceServices, LightServices):
 
     def get_model_properties(self, req):
         res = gs.GetModelPropertiesResponse()
-        m = self.physics.models.get(req.model_name)
-        if m is None:
-            rospy.logerr('GetModelProperties: model [%s] does not exist' % req.model_name)
-            res.success = False
-            res.status_message = 'GetModelProperties: model does not exist'
-            return res
+        m, error = self._model(req.model_name, 'GetModelProperties')
+        if error:
+            return failure(res, error)
         res.parent_model_name = ''
         res.canonical_body_name = ''        # Gazebo leaves it empty
         res.body_names = list(m.links)

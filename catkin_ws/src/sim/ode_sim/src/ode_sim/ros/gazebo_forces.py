@@ -8,6 +8,7 @@ import rospy
 from gazebo_msgs import srv as gs
 
 from ode_sim.ros.convert import vector
+from ode_sim.ros.gazebo_state import failure
 
 # gazebo_msgs/GetJointProperties type constants
 JOINT_TYPES = {'revolute': 0, 'continuous': 1, 'prismatic': 2, 'fixed': 3, 'ball': 4,
@@ -67,11 +68,10 @@ class ForceServices:
             if link is None:
                 rospy.logerr('ApplyBodyWrench: body [%s] does not exist' % req.body_name)
                 return gs.ApplyBodyWrenchResponse(False, 'ApplyBodyWrench: body does not exist')
-            ref = self._frame(req.reference_frame)
-            if ref is None:
-                rospy.logerr('ApplyBodyWrench: reference_frame is not a valid entity name')
-                return gs.ApplyBodyWrenchResponse(False,
-                                                  'ApplyBodyWrench: reference_frame not found')
+            ref, error = self._reference(req.reference_frame, 'ApplyBodyWrench: reference_frame not found',
+                                         'ApplyBodyWrench: reference_frame is not a valid entity name')
+            if error:
+                return gs.ApplyBodyWrenchResponse(False, error)
             # as Gazebo: the force acts at the centre of mass, the reference point adds
             # point x force to the torque (both in the reference frame's axes)
             rpose = ref[0]
@@ -118,9 +118,7 @@ class ForceServices:
         with self.node.lock:
             joint = self._find_joint(req.joint_name)
             if joint is None:
-                res.success = False
-                res.status_message = 'GetJointProperties: joint not found'
-                return res
+                return failure(res, 'GetJointProperties: joint not found')
             res.type = JOINT_TYPES.get(joint.type, 0)
             res.position = [float(joint.position())]
             res.rate = [float(joint.velocity())]

@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ET
 from gazebo_msgs import srv as gs
 
 from ode_sim.ros.convert import color_msg, pose_from_msg, rgba, xyz
+from ode_sim.ros.gazebo_state import failure
 
 # SDF 1.6 <light><attenuation> defaults
 ATTENUATION_DEFAULT = (1.0, 1.0, 0.0)
@@ -80,10 +81,7 @@ class LightServices:
         res = gs.GetLightPropertiesResponse()
         light = self._light(req.light_name)
         if light is None:
-            res.success = False
-            res.status_message = ('getLightProperties: Requested light %s not found!'
-                                  % req.light_name)
-            return res
+            return failure(res, 'getLightProperties: Requested light %s not found!' % req.light_name)
         res.diffuse = color_msg(light.diffuse)
         (res.attenuation_constant, res.attenuation_linear,
          res.attenuation_quadratic) = self._attenuation.get(light.name, ATTENUATION_DEFAULT)

@@ -11,56 +11,94 @@ from ode_sim.description.model import ModelError
 from ode_sim.ros.convert import fill_vector, pose_from_msg, pose_msg, twist_msg, vector, xyz
 
 
-def _seen_from(ref, pose, lin, ang):
-    """(Pose msg, Twist msg) of a world-frame state as seen from a reference entity, `ref`
-    being GazeboApi._frame's (pose, (lin, ang)) of it: what GetModelState and GetLinkState
-    answer (velocities relative, expressed in the reference's axes)."""
-    rpose, (rlin, rang) = ref
-    inv = rpose.inverse()
-    return pose_msg(inv * pose), twist_msg(inv.rotate(lin - rlin), inv.rotate(ang - rang))
+LINK_NOT_FOUND = '%s: link not found, did you forget to scope the link by model name?'
+REFERENCE_NOT_FOUND = '%s: reference %s not found, did you forget to scope the %s by model name?'
+SPAWN_REFERENCE_NOT_FOUND = 'SpawnModel: Failure - reference frame [%s] not found'
+
+
+def failure(res, message):
+    """RES (a response with success and status_message) answering that it failed: MESSAGE."""
+    res.success = False
+    res.status_message = message
+    return res
 
 
 class StateServices:
     """GazeboApi's state services (mixin: uses self.node, self.physics, self._frame,
-    self._find_link, self._get_model_state_count)."""
+    self._find_link, self._get_model_state_count). The lookups _model, _link and _reference
+    serve every /gazebo/* service (gazebo_api.py, gazebo_forces.py, world_control.py too)."""
 
+    # ----------------------------------------------------------------- lookups
+    def _model(self, name, service, logged_as=None):
+        """(the model NAME, None), or (None, "SERVICE: model does not exist") after logging
+        gazebo_ros_api_plugin's "LOGGED_AS: model [NAME] does not exist" (LOGGED_AS: SERVICE
+        unless given)."""
+        m = self.physics.models.get(name)
+        if m is not None:
+            return m, None
+        rospy.logerr('%s: model [%s] does not exist' % (logged_as or service, name))
+        return None, '%s: model does not exist' % service
+
+    def _link(self, name, service):
+        """(the link NAME, 'model::link' or unique, None), or (None, "SERVICE: link not found,
+        did you forget to scope the link by model name?")."""
+        link = self._find_link(name)
+        return (link, None) if link is not None else (None, LINK_NOT_FOUND % service)
+
+    def _reference(self, name, message, logged=None):
+        """(GazeboApi._frame of the reference entity NAME, None), or (None, MESSAGE) after
+        logging LOGGED (when given) if NAME is no entity."""
+        ref = self._frame(name)
+        if ref is not None:
+            return ref, None
+        if logged:
+            rospy.logerr(logged)
+        return None, message
+
+    def _seen_from(self, reference, state, message):
+        """((Pose msg, Twist msg), None): the world-frame state STATE() = (pose, (lin, ang)) as
+        seen from the reference entity REFERENCE, velocities relative and in its axes (what
+        GetModelState and GetLinkState answer); or (None, MESSAGE) if REFERENCE is no entity."""
+        with self.node.lock:
+            ref, error = self._reference(reference, message)
+            if error:
+                return None, error
+            pose, (lin, ang) = state()
+        rpose, (rlin, rang) = ref
+        inv = rpose.inverse()
+        return (pose_msg(inv * pose), twist_msg(inv.rotate(lin - rlin), inv.rotate(ang - rang))), None
+
+    # ----------------------------------------------------------------- models
     def get_model_state(self, req):
         res = gs.GetModelStateResponse()
-        m = self.physics.models.get(req.model_name)
-        if m is None:
-            rospy.logerr('GetModelState: model [%s] does not exist' % req.model_name)
-            res.success = False
-            res.status_message = 'GetModelState: model does not exist'
-            return res
+        m, error = self._model(req.model_name, 'GetModelState')
+        if error:
+            return failure(res, error)
         seq = self._get_model_state_count.get(req.model_name, 0) + 1
         self._get_model_state_count[req.model_name] = seq
         res.header.seq = seq
         res.header.stamp = rospy.Time.from_sec(self.physics.time)
         res.header.frame_id = req.relative_entity_name
-        with self.node.lock:
-            ref = self._frame(req.relative_entity_name)
-            if ref is None:
-                res.success = False
-                res.status_message = ('GetModelState: reference relative_entity_name not found, '
-                                      'did you forget to scope the body by model name?')
-                return res
-            pose = m.pose()
-            lin, ang = m.twist()
-        res.pose, res.twist = _seen_from(ref, pose, lin, ang)
+        seen, error = self._seen_from(req.relative_entity_name, lambda: (m.pose(), m.twist()),
+                                      REFERENCE_NOT_FOUND % ('GetModelState', 'relative_entity_name', 'body'))
+        if error:
+            return failure(res, error)
+        res.pose, res.twist = seen
         res.success = True
         res.status_message = 'GetModelState: got properties'
         return res
 
     def _apply_model_state(self, state):
-        m = self.physics.models.get(state.model_name)
-        if m is None:
-            rospy.logerr('Updating ModelState: model [%s] does not exist' % state.model_name)
-            return False, 'SetModelState: model does not exist'
-        ref = self._frame(state.reference_frame)
-        if ref is None:
-            rospy.logerr('Updating ModelState: for model[%s], specified reference frame entity '
-                         '[%s] does not exist' % (state.model_name, state.reference_frame))
-            return False, 'SetModelState: specified reference frame entity does not exist'
+        """/gazebo/set_model_state's topic and the service's work: (success, status text)."""
+        m, error = self._model(state.model_name, 'SetModelState', logged_as='Updating ModelState')
+        if error:
+            return False, error
+        ref, error = self._reference(
+            state.reference_frame, 'SetModelState: specified reference frame entity does not exist',
+            'Updating ModelState: for model[%s], specified reference frame entity [%s] does not '
+            'exist' % (state.model_name, state.reference_frame))
+        if error:
+            return False, error
         rpose = ref[0]
         with self.node.lock:
             m.set_pose(rpose * pose_from_msg(state.pose))
@@ -69,18 +107,12 @@ class StateServices:
         return True, 'SetModelState: set model state done'
 
     def set_model_state(self, req):
-        ok, msg = self._apply_model_state(req.model_state)
-        return gs.SetModelStateResponse(ok, msg)
-
-    def _set_model_state_topic(self, msg):
-        self._apply_model_state(msg)
+        return gs.SetModelStateResponse(*self._apply_model_state(req.model_state))
 
     def set_model_configuration(self, req):
-        m = self.physics.models.get(req.model_name)
-        if m is None:
-            rospy.logerr('SetModelConfiguration: model [%s] does not exist' % req.model_name)
-            return gs.SetModelConfigurationResponse(
-                False, 'SetModelConfiguration: model does not exist')
+        m, error = self._model(req.model_name, 'SetModelConfiguration')
+        if error:
+            return gs.SetModelConfigurationResponse(False, error)
         if len(req.joint_names) != len(req.joint_positions):
             return gs.SetModelConfigurationResponse(
                 False, 'SetModelConfiguration: joint name and position list have different '
@@ -96,36 +128,29 @@ class StateServices:
     def get_link_state(self, req):
         res = gs.GetLinkStateResponse()
         with self.node.lock:
-            link = self._find_link(req.link_name)
-            if link is None:
-                res.success = False
-                res.status_message = ('GetLinkState: link not found, did you forget to scope '
-                                      'the link by model name?')
-                return res
-            ref = self._frame(req.reference_frame)
-            if ref is None:
-                res.success = False
-                res.status_message = ('GetLinkState: reference reference_frame not found, did '
-                                      'you forget to scope the link by model name?')
-                return res
-            pose = link.pose()
-            lin, ang = link.velocity()
+            link, error = self._link(req.link_name, 'GetLinkState')
+            if not error:
+                seen, error = self._seen_from(req.reference_frame, lambda: (link.pose(), link.velocity()),
+                                              REFERENCE_NOT_FOUND % ('GetLinkState', 'reference_frame', 'link'))
+        if error:
+            return failure(res, error)
         res.link_state.link_name = req.link_name
-        res.link_state.pose, res.link_state.twist = _seen_from(ref, pose, lin, ang)
+        res.link_state.pose, res.link_state.twist = seen
         res.link_state.reference_frame = req.reference_frame
         res.success = True
         res.status_message = 'GetLinkState: got state'
         return res
 
     def _apply_link_state(self, state):
+        """/gazebo/set_link_state's topic and the service's work: (success, status text)."""
         link = self._find_link(state.link_name)
         if link is None or link.body is None:
             rospy.logerr('Updating LinkState: link [%s] does not exist' % state.link_name)
             return False, 'SetLinkState: link does not exist'
-        ref = self._frame(state.reference_frame)
-        if ref is None:
-            rospy.logerr('Updating LinkState: reference_frame is not a valid entity name')
-            return False, 'SetLinkState: failed'
+        ref, error = self._reference(state.reference_frame, 'SetLinkState: failed',
+                                     'Updating LinkState: reference_frame is not a valid entity name')
+        if error:
+            return False, error
         rpose = ref[0]
         with self.node.lock:
             t = state.twist
@@ -134,20 +159,13 @@ class StateServices:
         return True, 'SetLinkState: success'
 
     def set_link_state(self, req):
-        ok, msg = self._apply_link_state(req.link_state)
-        return gs.SetLinkStateResponse(ok, msg)
-
-    def _set_link_state_topic(self, msg):
-        self._apply_link_state(msg)
+        return gs.SetLinkStateResponse(*self._apply_link_state(req.link_state))
 
     def get_link_properties(self, req):
         res = gs.GetLinkPropertiesResponse()
-        link = self._find_link(req.link_name)
-        if link is None:
-            res.success = False
-            res.status_message = ('GetLinkProperties: link not found, did you forget to scope '
-                                  'the link by model name?')
-            return res
+        link, error = self._link(req.link_name, 'GetLinkProperties')
+        if error:
+            return failure(res, error)
         ine = link.desc.inertial
         res.gravity_mode = bool(link.desc.gravity)
         if ine is not None:
@@ -161,11 +179,9 @@ class StateServices:
         return res
 
     def set_link_properties(self, req):
-        link = self._find_link(req.link_name)
-        if link is None:
-            return gs.SetLinkPropertiesResponse(
-                False, 'SetLinkProperties: link not found, did you forget to scope the link by '
-                       'model name?')
+        link, error = self._link(req.link_name, 'SetLinkProperties')
+        if error:
+            return gs.SetLinkPropertiesResponse(False, error)
         with self.node.lock:
             link.set_inertial(req.mass, (req.ixx, req.iyy, req.izz, req.ixy, req.ixz, req.iyz),
                               xyz(req.com.position), req.gravity_mode)

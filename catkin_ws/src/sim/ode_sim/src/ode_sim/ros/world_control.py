@@ -24,6 +24,7 @@ from ode_sim.description import save_world, sdf
 from ode_sim.description.model import ModelError
 from ode_sim.ros.convert import pose_from_msg, pose_msg
 from ode_sim.ros.gazebo_lights import attenuation_of
+from ode_sim.ros.gazebo_state import SPAWN_REFERENCE_NOT_FOUND
 
 STATS_PERIOD = 0.2          # wall seconds between /gazebo/world_stats messages
 POSE_PERIOD = 1.0 / 60      # wall seconds between /gazebo/pose_info messages at most
@@ -190,10 +191,9 @@ def spawn_light(api, req):
     with node.lock:
         if any(lt.name == light.name for lt in node.world.lights):
             return SpawnModelResponse(False, 'SpawnModel: Failure - entity already exists.')
-        ref = api._frame(req.reference_frame)
-        if ref is None:
-            return SpawnModelResponse(False, 'SpawnModel: Failure - reference frame [%s] not '
-                                             'found' % req.reference_frame)
+        ref, error = api._reference(req.reference_frame, SPAWN_REFERENCE_NOT_FOUND % req.reference_frame)
+        if error:
+            return SpawnModelResponse(False, error)
         light.pose = ref[0] * pose_from_msg(req.initial_pose) * light.pose
         node.world.lights.append(light)
         api._attenuation[light.name] = attenuation_of(light.element)
