@@ -3,20 +3,17 @@ python3-selenium) against one launch (test/browser.launch: web.launch with rosbr
 turtlesim, the space scanner in the office): the turtlesim panel draws the turtle and its
 trail after a Twist, the arrow keys and the teleop pad move the turtle, the plot panel draws a
 line, the 3D panel shows the simulated robot and its laser scan (pixels of screenshots)."""
-import io
 import os
-import socket
+import sys
 import time
 import urllib.request
 
 import numpy as np
 import pytest
 
-from course_testing import Proc, RosCore, free_port, wait_for
-from course_testing import sim_testing as T
-from PIL import Image
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from browser_page import Page, open_page  # noqa: E402  (the browser tests' shared set-up)
 
-HERE = os.path.dirname(os.path.abspath(__file__))
 PEN = np.array([179, 184, 255])          # turtlesim's default pen colour
 BACKGROUND = np.array([69, 86, 255])     # turtlesim's default background
 PLOT_BLUE = np.array([31, 119, 255])     # the plot's first series (#1f77ff)
@@ -30,52 +27,8 @@ TOKEN = 'c0ffee42' * 4                 # the page's token (web.launch token:=...
 VIEW3D = ({'x': 1045, 'y': 0, 'w': 600, 'h': 570}, {'fixed': 'odom', 'distance': 1.2})
 
 
-def _port_open(port):
-    with socket.socket() as s:
-        s.settimeout(0.5)
-        return s.connect_ex(('127.0.0.1', port)) == 0
-
-
-def _chrome(log_path):
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = '/usr/bin/chromium'
-    for a in ('--headless=new', '--no-sandbox', '--disable-dev-shm-usage', '--window-size=1700,1000',
-              '--enable-unsafe-swiftshader', '--use-angle=swiftshader', '--disable-extensions',
-              '--no-first-run', '--disable-background-networking'):
-        opts.add_argument(a)
-    opts.set_capability('goog:loggingPrefs', {'browser': 'ALL'})
-    return webdriver.Chrome(service=Service('/usr/bin/chromedriver', log_path=log_path), options=opts)
-
-
-class Stack:
-    def __init__(self, env, driver, launch, tmp):
-        self.env, self.driver, self.launch, self.tmp = env, driver, launch, tmp
-
-    def js(self, script, *args):
-        return self.driver.execute_script(script, *args)
-
-    def stats(self, kind):
-        for p in self.js('return courseWeb.panels()'):
-            if p['type'] == kind:
-                return p['stats']
-        raise AssertionError('no %s panel on the page' % kind)
-
-    def wait(self, predicate, what, timeout=60.0):
-        try:
-            return wait_for(predicate, timeout, 0.2, what)
-        except TimeoutError as e:
-            logs = [l['message'][:300] for l in self.driver.get_log('browser')][-15:]
-            raise AssertionError('%s\nbrowser console: %s\nlaunch log:\n%s'
-                                 % (e, '\n'.join(logs), self.launch.output()[-3000:]))
-
-    def shot(self, css, name):
-        """RGB array of the element's screenshot (also kept as NAME.png in the test's tmp dir)."""
-        png = self.driver.find_element('css selector', css).screenshot_as_png
-        with open(os.path.join(self.tmp, name + '.png'), 'wb') as f:
-            f.write(png)
-        return np.asarray(Image.open(io.BytesIO(png)).convert('RGB'))
+class Stack(Page):
+    """The page with the turtlesim panel: the turtle's pose, teleports, Twists."""
 
     def pose(self, turtle='turtle1'):
         """The turtle's last /turtle1/pose as the page received it (x, y)."""
@@ -119,42 +72,15 @@ def _near(img, rgb, tol=12):
 @pytest.fixture(scope='module')
 def stack(tmp_path_factory):
     tmp = str(tmp_path_factory.mktemp('course_web'))
-    core = RosCore(log_dir=os.path.join(tmp, 'ros_log')).start()
-    driver = launch = None
-    try:
-        env = T.ros_env(core)
-        web, bridge = free_port(), free_port()
-        launch = Proc(['roslaunch', os.path.join(HERE, 'browser.launch'), 'port:=%d' % web,
-                       'rosbridge_port:=%d' % bridge, 'token:=' + TOKEN,
-                       'secret_file:=' + os.path.join(tmp, 'secret')],
-                      env=env, log=os.path.join(tmp, 'launch.log'))
 
-        def up():
-            assert launch.alive(), 'browser.launch exited:\n' + launch.output()[-3000:]
-            # the page's own server (its URL printed), not another process on a port that
-            # free_port() gave out (a node's XML-RPC server answers GET with 501)
-            return ('course_web: open http://localhost:%d/' % web) in launch.output() and \
-                _port_open(web) and _port_open(bridge)
-        wait_for(up, 90, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
+    def vendor_served(web):
         req = urllib.request.Request('http://127.0.0.1:%d/vendor/roslib.min.js' % web,
                                      headers={'Authorization': 'token ' + TOKEN})
         with urllib.request.urlopen(req, timeout=10) as r:
             assert r.status == 200, 'www/vendor is missing: run scripts/install_js.sh'
-        driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
-        driver.set_script_timeout(30)
-        # the printed URL's way in: ?token= once, then the cookie (rosbridge: the page's
-        # rosauth MAC from /rosauth)
-        driver.get('http://127.0.0.1:%d/?layout=empty&token=%s' % (web, TOKEN))
-        s = Stack(env, driver, launch, tmp)
-        s.wait(lambda: s.js('return window.courseWeb && courseWeb.connected()'), 'the page to connect to rosbridge')
+    with open_page(tmp, 'browser.launch', TOKEN, Stack, up_timeout=90, served=vendor_served) as s:
         s.js('courseWeb.setLayout(arguments[0])', LAYOUT)
         yield s
-    finally:
-        if driver:
-            driver.quit()
-        if launch:
-            launch.stop()
-        core.stop()
 
 
 def test_turtlesim_panel_draws_turtle_and_trail(stack):

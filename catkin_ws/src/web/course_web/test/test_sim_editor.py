@@ -16,12 +16,11 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pytest
 
-from course_testing import Proc, RosCore, free_port, wait_for
+from course_testing import Proc, RosCore
 from course_testing import sim_testing as T
 
-HERE = os.path.dirname(os.path.abspath(__file__))
-sys.path.insert(0, HERE)
-from test_browser import Stack, _chrome, _port_open  # noqa: E402  (the same browser set-up)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from browser_page import Page, open_page  # noqa: E402  (the browser tests' shared set-up)
 
 TOKEN = 'beefcafe' * 4
 # the panel and its canvas wholly inside the window (1700 x 1000): pointer offsets stay exact
@@ -29,7 +28,7 @@ VIEW = ({'x': 0, 'y': 0, 'w': 1200, 'h': 760}, {'fixed': 'odom', 'distance': 9, 
 LIBRARY_MODEL = 'table'
 
 
-class Editor(Stack):
+class Editor(Page):
     def sim(self):
         return self.stats('view3d')['sim']
 
@@ -78,38 +77,10 @@ def ed(tmp_path_factory):
     tmp = str(tmp_path_factory.mktemp('sim_editor'))
     downloads = os.path.join(tmp, 'downloads')
     os.makedirs(downloads)
-    core = RosCore(log_dir=os.path.join(tmp, 'ros_log')).start()
-    driver = launch = None
-    try:
-        env = T.ros_env(core)
-        web, bridge = free_port(), free_port()
-        launch = Proc(['roslaunch', os.path.join(HERE, 'sim_editor.launch'), 'port:=%d' % web,
-                       'rosbridge_port:=%d' % bridge, 'token:=' + TOKEN,
-                       'secret_file:=' + os.path.join(tmp, 'secret')],
-                      env=env, log=os.path.join(tmp, 'launch.log'))
-
-        def up():
-            assert launch.alive(), 'sim_editor.launch exited:\n' + launch.output()[-3000:]
-            # the page's own server (its URL printed), not another process on a port that
-            # free_port() gave out (a node's XML-RPC server answers GET with 501)
-            return ('course_web: open http://localhost:%d/' % web) in launch.output() and \
-                _port_open(web) and _port_open(bridge)
-        wait_for(up, 120, 0.2, 'the page (port %d) and rosbridge (port %d)' % (web, bridge))
-        driver = _chrome(os.path.join(tmp, 'chromedriver.log'))
-        driver.set_script_timeout(30)
-        driver.execute_cdp_cmd('Page.setDownloadBehavior', {'behavior': 'allow', 'downloadPath': downloads})
-        driver.get('http://127.0.0.1:%d/?layout=empty&token=%s' % (web, TOKEN))
-        s = Editor(env, driver, launch, tmp)
-        s.web, s.bridge, s.downloads, s.core = web, bridge, downloads, core
-        s.wait(lambda: s.js('return window.courseWeb && courseWeb.connected()'), 'the page to connect to rosbridge')
+    with open_page(tmp, 'sim_editor.launch', TOKEN, Editor, up_timeout=120, downloads=downloads) as s:
+        s.downloads = downloads
         s.js('courseWeb.addPanel("view3d", arguments[0], arguments[1])', *VIEW)
         yield s
-    finally:
-        if driver:
-            driver.quit()
-        if launch:
-            launch.stop()
-        core.stop()
 
 
 def test_insert_list_is_the_model_library(ed):
