@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from tf import transformations as tft
 
-from course_runtime.geometry import yaw_of, yaw_quaternion
+from course_runtime.geometry import quaternion_wxyz, yaw_of, yaw_quaternion
 
 Q = namedtuple('Q', 'x y z w')
 
@@ -26,3 +26,12 @@ def test_yaw_of_a_tilted_rotation_is_tfs():
         q = tft.quaternion_from_euler(roll, pitch, yaw)
         assert yaw_of(Q(*q)) == pytest.approx(tft.euler_from_quaternion(q)[2], abs=1e-9)
         assert yaw_of(Q(*q)) == pytest.approx(yaw, abs=1e-9)
+
+
+def test_quaternion_of_roll_pitch_yaw_is_tfs_w_first():
+    rng = np.random.default_rng(11)
+    for _ in range(200):
+        roll, pitch, yaw = rng.uniform(-math.pi, math.pi, 3)
+        x, y, z, w = tft.quaternion_from_euler(roll, pitch, yaw)
+        assert quaternion_wxyz(roll, pitch, yaw) == pytest.approx((w, x, y, z), abs=1e-12)
+    assert quaternion_wxyz(0.0, 0.0, 0.7) == pytest.approx((math.cos(0.35), 0.0, 0.0, math.sin(0.35)))

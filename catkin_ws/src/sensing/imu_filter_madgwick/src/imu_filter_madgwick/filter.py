@@ -6,6 +6,8 @@ Plain float arithmetic: a handful of scalars per sample is faster in Python than
 """
 import math
 
+from course_runtime import geometry
+
 WORLD_FRAMES = ('enu', 'ned', 'nwu')
 
 FREE_FALL_WARNING = 'The IMU seems to be in free fall, cannot determine gravity direction!'
@@ -68,12 +70,7 @@ def quat_to_rpy(q):
     return roll, pitch, yaw
 
 
-def quat_from_rpy(roll, pitch, yaw):
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy)
+quat_from_rpy = geometry.quaternion_wxyz      # (w, x, y, z) of roll, pitch, yaw
 
 
 def _cross(a, b):

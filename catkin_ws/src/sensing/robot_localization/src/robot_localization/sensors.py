@@ -8,6 +8,7 @@ vpitch, vyaw) with a 6x6 covariance; all in the world frame (poses) or the body 
 import math
 
 import numpy as np
+from course_runtime import geometry
 
 from .ekf import Measurement, normalize_angle
 
@@ -239,9 +240,4 @@ def quaternion_to_rpy(q):
     return roll, pitch, yaw
 
 
-def rpy_to_quaternion(roll, pitch, yaw):
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return (cr * cp * cy + sr * sp * sy, sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy, cr * cp * sy - sr * sp * cy)
+rpy_to_quaternion = geometry.quaternion_wxyz   # (w, x, y, z) of roll, pitch, yaw

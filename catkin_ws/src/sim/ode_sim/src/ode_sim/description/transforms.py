@@ -15,13 +15,8 @@ _Quaternion = namedtuple('_Quaternion', 'x y z w')    # course_runtime.geometry 
 def quat_from_rpy(roll, pitch, yaw):
     """Quaternion (x, y, z, w) of fixed-axis roll about X, then pitch about Y, then yaw about Z
     (the URDF / SDF / tf convention)."""
-    cr, sr = math.cos(roll / 2), math.sin(roll / 2)
-    cp, sp = math.cos(pitch / 2), math.sin(pitch / 2)
-    cy, sy = math.cos(yaw / 2), math.sin(yaw / 2)
-    return np.array([sr * cp * cy - cr * sp * sy,
-                     cr * sp * cy + sr * cp * sy,
-                     cr * cp * sy - sr * sp * cy,
-                     cr * cp * cy + sr * sp * sy])
+    w, x, y, z = geometry.quaternion_wxyz(roll, pitch, yaw)
+    return np.array([x, y, z, w])
 
 
 def rpy_from_quat(q):
