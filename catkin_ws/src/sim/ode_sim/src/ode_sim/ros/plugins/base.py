@@ -23,7 +23,7 @@ import math
 import rospy
 
 from ode_sim.description.model import ModelError
-from ode_sim.ros.plugins.rosio import MemoryIO, WallClock
+from ode_sim.ros.plugins.rosio import MemoryIO, WallClock, subscribed
 
 
 NO_WORK = float('inf')       # next_update(): nothing to do until something changes
@@ -233,6 +233,11 @@ class Plugin:
     def _next_due(self):
         """next_update() of a plugin whose update() only acts when due()."""
         return self._next if self.period > 0 else None
+
+    def _next_due_for(self, pub):
+        """next_update() of a plugin whose update() only publishes on PUB when due(): NO_WORK
+        while PUB has no subscriber."""
+        return self._next_due() if subscribed(pub) else NO_WORK
 
     # -- lifecycle
     def before_step(self):

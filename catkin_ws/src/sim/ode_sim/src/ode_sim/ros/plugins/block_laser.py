@@ -24,7 +24,7 @@ import rospy
 from geometry_msgs.msg import Point32
 from sensor_msgs.msg import ChannelFloat32, PointCloud
 
-from ode_sim.ros.plugins.base import NO_WORK, Plugin
+from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.laser import sensor_world_pose, tf_resolve
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 
@@ -131,9 +131,7 @@ class BlockLaser(Plugin):
         return msg
 
     def next_update(self):
-        if not subscribed(self.pub):
-            return NO_WORK
-        return self._next_due()
+        return self._next_due_for(self.pub)
 
     def update(self):
         if subscribed(self.pub) and self.due():

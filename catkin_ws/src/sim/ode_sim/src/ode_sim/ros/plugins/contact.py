@@ -23,7 +23,7 @@ stamp is the sim time of the update.
 import rospy
 from gazebo_msgs.msg import ContactsState
 
-from ode_sim.ros.plugins.base import NO_WORK, Plugin
+from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.laser import tf_resolve
 from ode_sim.ros.plugins.rosio import close
 
@@ -59,9 +59,7 @@ class BumperPlugin(Plugin):
         self.messages = 0
 
     def next_update(self):
-        if self.pub.get_num_connections() <= 0:
-            return NO_WORK
-        return self._next_due()
+        return self._next_due_for(self.pub)
 
     def update(self):
         if not self.due():

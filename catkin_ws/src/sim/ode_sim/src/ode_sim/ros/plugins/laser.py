@@ -24,7 +24,7 @@ set EXCLUDE_OWN_LINK to drop the own link instead.
 import rospy
 from sensor_msgs.msg import LaserScan
 
-from ode_sim.ros.plugins.base import NO_WORK, Plugin
+from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE
 
 
@@ -105,9 +105,7 @@ class LaserPlugin(Plugin):
                               frame=self.frame_id)
 
     def next_update(self):
-        if self.pub is None or self.pub.get_num_connections() <= 0:
-            return NO_WORK
-        return self._next_due()
+        return self._next_due_for(self.pub)
 
     def update(self):
         if self.pub is None or self.pub.get_num_connections() <= 0:

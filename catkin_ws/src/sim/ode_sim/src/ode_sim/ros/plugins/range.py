@@ -21,7 +21,7 @@ import numpy as np
 import rospy
 from sensor_msgs.msg import Range
 
-from ode_sim.ros.plugins.base import NO_WORK, Plugin
+from ode_sim.ros.plugins.base import Plugin
 from ode_sim.ros.plugins.laser import sensor_world_pose, tf_resolve
 from ode_sim.ros.plugins.rosio import SENSOR_QUEUE, close, subscribed
 
@@ -104,9 +104,7 @@ class RangePlugin(Plugin):
         return msg
 
     def next_update(self):
-        if not subscribed(self.pub):
-            return NO_WORK
-        return self._next_due()
+        return self._next_due_for(self.pub)
 
     def update(self):
         if not subscribed(self.pub) or not self.due():
