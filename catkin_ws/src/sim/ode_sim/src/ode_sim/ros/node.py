@@ -13,7 +13,7 @@ from ode_sim.ros import plugins as plugin_registry
 from ode_sim.description.model import ModelError
 from ode_sim.engine.physics import PhysicsWorld
 from ode_sim.ros.plugins.base import PluginContext
-from ode_sim.ros.plugins.rosio import DirectPublisher, RosIO, TfBatch, WallClock
+from ode_sim.ros.plugins.rosio import FanoutPublisher, RosIO, TfBatch, WallClock
 from ode_sim.ros.stepping import MAX_GROUP, StepLoop  # noqa: F401 (MAX_GROUP: tests)
 
 
@@ -90,9 +90,9 @@ class SimNode(StepLoop):
         self.ctx = PluginContext(self.physics, world, lockstep=lockstep, tf=self.tf, io=io,
                                  wall=WallClock())
         self.spawner = Spawner(self)
-        # written to the subscribers' sockets by this thread (rosio.DirectPublisher): at 1.0x
-        # real time /clock goes to every node every step, a sender-thread wake-up each
-        self.clock_pub = DirectPublisher('/clock', Clock, queue_size=10)
+        # sent to the subscribers' sockets by the compiled core's thread (rosio.FanoutPublisher):
+        # /clock goes to every node every step, and costs this thread no system call
+        self.clock_pub = FanoutPublisher('/clock', Clock, queue_size=10)
         freq = float(rospy.get_param('gazebo/pub_clock_frequency', 0) or 0)
         self.clock_period = 1.0 / freq if freq > 0 else 0.0
         self._last_clock = -1.0

@@ -1,6 +1,7 @@
 // pybind11 module ode_sim.engine._core: the Stepper over raw ODE ids (integers) that
 // engine/compiled.py takes from the PyODE objects PhysicsWorld built, and the RayScene of the
-// lidar's ray casting (engine/raycore.py).
+// lidar's ray casting (engine/raycore.py), and the Fanout that sends /clock's frames
+// (ros/plugins/rosio.py).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -11,9 +12,11 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 #include <tuple>
 
+#include "fanout.h"
 #include "meshimport.h"
 #include "raycast.h"
 #include "stepper.h"
@@ -21,6 +24,7 @@
 
 namespace py = pybind11;
 using ode_sim::ActiveJoint;
+using ode_sim::Fanout;
 using ode_sim::RayScene;
 using ode_sim::Stepper;
 using ode_sim::Surface;
@@ -404,6 +408,32 @@ void bind_ray_scene(py::module& m) {
           py::arg("excluded") = py::none());
 }
 
+void bind_fanout(py::module& m) {
+  py::class_<Fanout>(m, "Fanout",
+                     "The newest of a stream of small frames, sent to stream sockets by a "
+                     "thread of its own (engine/core/fanout.h).")
+      .def(py::init<>())
+      .def(
+          "add",
+          [](Fanout& f, int fd) {
+            const int handle = f.Add(fd);
+            if (handle < 0) throw std::system_error(errno, std::generic_category(), "dup");
+            return handle;
+          },
+          py::arg("fd"), "Send later frames to (a duplicate of) the socket fd; a handle.")
+      .def("remove", &Fanout::Remove, py::arg("handle"))
+      .def(
+          "publish", [](Fanout& f, py::bytes frame) { f.Publish(std::string(frame)); },
+          py::arg("frame"))
+      .def("take_dead", &Fanout::TakeDead,
+           "Handles whose socket failed since the last call (removed).")
+      .def("flush", &Fanout::Flush, py::call_guard<py::gil_scoped_release>())
+      .def("close", &Fanout::Close, py::call_guard<py::gil_scoped_release>())
+      .def_property_readonly("sent", &Fanout::sent)
+      .def_property_readonly("dropped", &Fanout::dropped)
+      .def("__len__", &Fanout::size);
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -413,4 +443,5 @@ PYBIND11_MODULE(_core, m) {
   py::class_<Stepper> stepper = bind_stepper(m);
   bind_stepper_state(stepper);
   bind_ray_scene(m);
+  bind_fanout(m);
 }

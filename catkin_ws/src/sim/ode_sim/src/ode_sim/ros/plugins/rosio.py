@@ -115,62 +115,85 @@ class _NoYieldWrite:
         return True
 
 
-class DirectPublisher(rospy.Publisher):
-    """A rospy.Publisher for small, frequent messages (/clock) whose publish() writes the
-    message to each subscriber's socket itself (one non-blocking send) instead of waking a
-    sender thread per subscriber: at 1.0x real time /clock goes out every physics step to
-    every node of the graph, and a thread switch (with the GIL) per message and subscriber cost
-    more than the messages. A subscriber whose socket buffer is full (a frozen process) loses
-    that message, as a full queue drops one; a send that takes only part of a message leaves
-    the rest, and every later message, to that subscriber's sender thread (order and framing
-    kept). Connections it cannot use this way keep NoYieldPublisher's queued write."""
+class FanoutPublisher(rospy.Publisher):
+    """A rospy.Publisher for a small, frequent message (/clock) whose frames go to every
+    subscriber's socket from a thread of the compiled core (engine/core/fanout.h), not from the
+    publishing thread: at 1.0x real time /clock goes out every physics step to every node of the
+    graph, and as fast as the machine allows at real_time_update_rate 0, and one send per node
+    cost the simulation thread as much as the physics. publish() serializes the message as
+    rospy does and hands the frame over (no system call while the thread is busy sending); the
+    thread sends the newest frame (a subscriber never gets an older time after a newer one), a
+    full socket misses it whole, a frame sent in part is completed, and a failed socket ends
+    its connection as a failed rospy write does. Connections it cannot send to this way (no
+    socket) keep NoYieldPublisher's queued write."""
+
+    def __init__(self, name, data_class, queue_size=10):
+        from ode_sim.engine._core import Fanout
+        super().__init__(name, data_class, queue_size=queue_size)
+        self._fan = Fanout()
+        self._handles = {}          # QueuedConnection -> the fan-out's handle
+        self._dead = set()          # handles whose socket failed (connection still listed)
+        self._seen = None           # impl.connections as last synchronised
+        self.handed = False         # this publish's frame handed over
 
     def publish(self, *args, **kwds):
         impl = self.impl
         if impl is not None:
-            for c in impl.connections:
-                if 'write_data' not in c.__dict__ and _queued(c):
-                    c.write_data = _DirectWrite(c) if _direct(c) else _NoYieldWrite(c)
+            if impl.connections is not self._seen:      # rospy replaces the list on a change
+                self._sync(impl.connections)
+            self._dead.update(self._fan.take_dead())
+        self.handed = False
         return super().publish(*args, **kwds)
+
+    def _sync(self, conns):
+        self._seen = conns
+        for c in conns:
+            if 'write_data' in c.__dict__ or not _queued(c):
+                continue
+            sock = getattr(getattr(c, '_connection', None), 'socket', None)
+            try:
+                handle = self._fan.add(sock.fileno()) if _direct(c) else None
+            except (AttributeError, OSError):
+                handle = None
+            if handle is None:
+                c.write_data = _NoYieldWrite(c)
+            else:
+                self._handles[c] = handle
+                c.write_data = _FanoutWrite(self, c, handle)
+        for c in [c for c in self._handles if c not in conns]:
+            self._fan.remove(self._handles.pop(c))
+
+    def unregister(self):
+        super().unregister()
+        self._fan.close()
+
+
+class _FanoutWrite:
+    """write_data of a QueuedConnection whose frames FanoutPublisher's thread sends: the first
+    of a publish's connections hands the frame over, the others only count it."""
+    __slots__ = ('pub', 'c', 'handle')
+
+    def __init__(self, pub, c, handle):
+        self.pub, self.c, self.handle = pub, c, handle
+
+    def __call__(self, data):
+        from rospy.exceptions import TransportTerminated
+        pub, t = self.pub, self.c._connection
+        if self.handle in pub._dead or t.done:
+            pub._dead.discard(self.handle)
+            t.close()
+            raise TransportTerminated('connection closed')
+        if not pub.handed:
+            pub._fan.publish(data)
+            pub.handed = True
+        t.stat_bytes += len(data)
+        t.stat_num_msg += 1
+        return True
 
 
 def _direct(c):
     t = getattr(c, '_connection', None)
     return all(hasattr(t, a) for a in ('socket', 'done', 'close'))
-
-
-class _DirectWrite:
-    """write_data of a QueuedConnection that sends in the publishing thread (DirectPublisher)."""
-    __slots__ = ('c', 'queued')
-
-    def __init__(self, c):
-        self.c = c
-        self.queued = None          # _NoYieldWrite after a partial send
-
-    def __call__(self, data):
-        import socket
-        from rospy.exceptions import TransportInitError, TransportTerminated
-        if self.queued is not None:
-            return self.queued(data)
-        t = self.c._connection
-        if t.done:
-            raise TransportTerminated('connection closed')
-        sock = t.socket
-        if sock is None:
-            raise TransportInitError('TCPROS transport was not successfully initialized')
-        try:
-            n = sock.send(data, socket.MSG_DONTWAIT)
-        except (BlockingIOError, InterruptedError):
-            return True             # the subscriber reads nothing: this message is dropped
-        except OSError as e:
-            t.close()
-            raise TransportTerminated(str(e))
-        t.stat_bytes += n
-        t.stat_num_msg += 1
-        if n < len(data):
-            self.queued = _NoYieldWrite(self.c)
-            return self.queued(data[n:])
-        return True
 
 
 class WallClock:
