@@ -9,15 +9,21 @@ Commands are sent every 0.05 simulated s (on /clock), so a controller's cmd_vel_
 stops the robot however fast the simulation runs. Prints `ready`; SIGUSR1 starts the measured
 window (counters reset), SIGINT ends it and prints one JSON line: per sensor the messages, the
 first/last header stamps and the distinct stamps; /clock messages; /tf messages and transforms
-per publishing node."""
+per publishing node.
+Messages are received raw (rospy.AnyMsg) and only what is counted is read from the bytes: the
+header stamp (bytes 4-11 of a message that starts with a std_msgs/Header) and a TFMessage's
+transform count (its first 4 bytes), so the listener's own CPU stays small beside the launch."""
 import json
 import signal
+import struct
 import sys
 
 import rospy
 from roslib.message import get_message_class
 from rosgraph_msgs.msg import Clock
-from tf2_msgs.msg import TFMessage
+
+STAMP = struct.Struct('<II')        # Header: uint32 seq, then time (uint32 secs, uint32 nsecs)
+COUNT = struct.Struct('<I')         # an array's length prefix
 
 DRIVE_PERIOD = 0.05     # simulated seconds between commands
 
@@ -41,6 +47,14 @@ class Counts:
         return out
 
 
+def on_stamped(counts, topic):
+    """A raw-message callback appending the header stamp (ns) to counts.stamps[topic]."""
+    def callback(msg):
+        secs, nsecs = STAMP.unpack_from(msg._buff, 4)
+        counts.stamps[topic].append(secs * 1000000000 + nsecs)
+    return callback
+
+
 def main(argv):
     drive, sensors = argv[1], argv[2:]
     rospy.init_node('sim_rtf_launch_listener', anonymous=True, disable_signals=True)
@@ -48,16 +62,15 @@ def main(argv):
     counts = Counts(list(types))
     for topic, typ in types.items():
         cls = get_message_class(typ)
-        if cls is None:
-            raise SystemExit('launch_listener: unknown message type %s' % typ)
-        rospy.Subscriber(topic, cls, (lambda t: lambda m: counts.stamps[t].append(
-            m.header.stamp.to_nsec()))(topic), queue_size=10000)
+        if cls is None or 'header' not in getattr(cls, '__slots__', ())[:1]:
+            raise SystemExit('launch_listener: %s is not a message type starting with a header' % typ)
+        rospy.Subscriber(topic, rospy.AnyMsg, on_stamped(counts, topic), queue_size=10000)
 
     def on_tf(msg):
         c = counts.tf.setdefault(msg._connection_header.get('callerid', '?'), [0, 0])
         c[0] += 1
-        c[1] += len(msg.transforms)
-    rospy.Subscriber('/tf', TFMessage, on_tf, queue_size=10000)
+        c[1] += COUNT.unpack_from(msg._buff, 0)[0]
+    rospy.Subscriber('/tf', rospy.AnyMsg, on_tf, queue_size=10000)
 
     kind, topics = drive.split(':', 1) if ':' in drive else (drive, '')
     if kind == 'none':

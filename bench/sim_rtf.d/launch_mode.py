@@ -186,14 +186,17 @@ def measure_launch(name, seconds, warmup, tmp, paced=False, bare_lib=None, bare_
         load = os.getloadavg()[0]
         sim_s = wall_s = 0.0
         procs, ths, bare_runs = {}, {}, []
+        listener_cpu = 0.0
+        listener_stat = '/proc/%d/stat' % listener.pid
         for _ in range(segments):
             s0, w0 = props().sim_time, time.monotonic()
-            p0, t0 = tree(launch.pid), threads(sim)
+            p0, t0, l0 = tree(launch.pid), threads(sim), read_stat(listener_stat)[2]
             time.sleep(seconds / segments)
             s1, w1 = props().sim_time, time.monotonic()
-            p1, t1 = tree(launch.pid), threads(sim)
+            p1, t1, l1 = tree(launch.pid), threads(sim), read_stat(listener_stat)[2]
             sim_s += s1 - s0
             wall_s += w1 - w0
+            listener_cpu += l1 - l0
             for p, v in p1.items():
                 if p in p0:
                     procs[p] = (v[0], procs.get(p, (v[0], 0.0))[1] + v[1] - p0[p][1])
@@ -215,7 +218,8 @@ def measure_launch(name, seconds, warmup, tmp, paced=False, bare_lib=None, bare_
         warn = [l for l in launch.output().splitlines() if '[ERROR]' in l or 'WARN' in l]
         return {'sim': sim_s, 'wall': wall_s, 'shipped_rate': shipped_rate, 'load': load,
                 'paced': paced, 'procs': procs, 'sim_pid': sim, 'threads': ths,
-                'bare_runs': bare_runs, 'stats': stats, 'urdf': urdf, 'warn': warn}
+                'bare_runs': bare_runs, 'stats': stats, 'urdf': urdf, 'warn': warn,
+                'listener_cpu': listener_cpu}
     finally:
         if listener is not None and listener.poll() is None:
             listener.kill()
@@ -262,6 +266,9 @@ def report(name, m, bare, bare_cpu):
     for pid, (pname, cpu) in sorted(m['procs'].items(), key=lambda kv: -kv[1][1]):
         lines.append('%s   %-28s %6.2f s  %5.1f %% of a core  %.3f CPU s per simulated s'
                      % (p, pname, cpu, 100.0 * cpu / wall, cpu / max(sim, 1e-9)))
+    if 'listener_cpu' in m:
+        lines.append('%s   (not the launch: the bench\'s listener, driving and counting: %.2f s, '
+                     '%.1f %% of a core)' % (p, m['listener_cpu'], 100.0 * m['listener_cpu'] / wall))
     th = m['threads']
     main = th.get(m['sim_pid'])
     if main:
