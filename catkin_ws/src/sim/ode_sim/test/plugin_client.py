@@ -3,6 +3,7 @@
 a plugin's topics / calls its services against a running sim_node, reads the simulated truth
 (/gazebo/get_model_state, /gazebo/model_states) and prints one JSON object."""
 import json
+import math
 import sys
 import time
 
@@ -35,6 +36,51 @@ def run_for(seconds, timeout=120.0):
             raise SystemExit('sim time did not advance')
         time.sleep(0.02)
     svc('/gazebo/pause_physics', Empty)()
+
+
+def time_step():
+    return svc('/gazebo/get_physics_properties', gs.GetPhysicsProperties)().time_step
+
+
+def step(n):
+    """Exactly n physics steps of the paused world (/gazebo/step_world); the sim time after."""
+    from ode_sim_msgs.srv import StepWorld
+    r = svc('/gazebo/step_world', StepWorld)(n)
+    if not r.success:
+        raise SystemExit(r.status_message)
+    return r.sim_time
+
+
+def step_to(t_end):
+    """The steps of the paused world that bring sim time to t_end; the sim time after."""
+    n = int(math.ceil((t_end - sim_time()) / time_step() - 1e-6))
+    return step(n) if n > 0 else sim_time()
+
+
+def wait_connected(pub, timeout=60.0):
+    """Until the publisher has a subscriber (a hang guard, not a measure)."""
+    deadline = time.monotonic() + timeout
+    while pub.get_num_connections() == 0:
+        if time.monotonic() > deadline:
+            raise SystemExit('nobody subscribed to %s' % pub.resolved_name)
+        time.sleep(0.02)
+
+
+def wait_delivered(topic, n, node='/gazebo', timeout=60.0):
+    """Until NODE has read N messages of TOPIC (its getBusStats; rospy counts a message when
+    it has read it, then runs the callback on the same thread)."""
+    import rosgraph
+    from xmlrpc.client import ServerProxy
+    proxy = ServerProxy(rosgraph.Master(rospy.get_name()).lookupNode(node))
+    deadline = time.monotonic() + timeout
+    while True:
+        _code, _msg, (_pubs, subs, _srvs) = proxy.getBusStats(rospy.get_name())
+        read = sum(c[2] for name, conns in subs if name == topic for c in conns)
+        if read >= n:
+            return
+        if time.monotonic() > deadline:
+            raise SystemExit('%s read %d of %d messages on %s' % (node, read, n, topic))
+        time.sleep(0.02)
 
 
 def state(name):
@@ -175,24 +221,44 @@ def mode_block():
 
 
 def mode_trajectory():
+    """The joint's position step by step (/gazebo/step_world of the paused world) once the
+    simulator has read the trajectory: the sim times the points are applied at are counted in
+    steps, whatever the machine's speed."""
     from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
     out = {}
     joint = svc('/gazebo/get_joint_properties', gs.GetJointProperties)
+
+    def swivel():
+        return joint('swivel').position[0]
+
     pub = rospy.Publisher('/set_joint_trajectory', JointTrajectory, queue_size=1, latch=True)
-    time.sleep(1.0)
+    wait_connected(pub)
     traj = JointTrajectory()
     traj.header.frame_id = 'world'
     traj.joint_names = ['swivel']
     traj.points = [JointTrajectoryPoint(positions=[0.5], time_from_start=rospy.Duration(0.2)),
                    JointTrajectoryPoint(positions=[1.0], time_from_start=rospy.Duration(0.3))]
-    t0 = sim_time()
+    dt = time_step()
+    t0, rest = sim_time(), swivel()
     pub.publish(traj)
-    time.sleep(1.0)
+    wait_delivered('/set_joint_trajectory', 1)
     base = state('turret')['xyz']
-    run_for(0.1)
-    out['first'] = [sim_time() - t0, joint('swivel').position[0]]
-    run_for(0.3)
-    out['second'] = [sim_time() - t0, joint('swivel').position[0]]
+    out['dt'], out['rest'], out['unstepped'] = dt, rest, swivel()
+    # one step at a time until the first point is set (at most 0.2 s of sim time)
+    q, t = rest, t0
+    while abs(q - rest) < 1e-9 and t - t0 < 0.2:
+        t = step(1)
+        q = swivel()
+    out['first'] = [t - t0, q]
+    # the second point: due 0.2 s (the first point's time_from_start) after the step that set
+    # the first; the joint holds the first point until that step, the second is set by it
+    t_due = t - dt + 0.2
+    t = step_to(t_due)
+    out['held'] = [t - t0, swivel()]
+    t = step(1)
+    out['second'] = [t - t0, swivel()]
+    t = step_to(t0 + 0.8)               # past the trajectory's end (its last point: 0.3 s)
+    out['after'] = [t - t0, swivel()]
     out['base_kept'] = [base, state('turret')['xyz']]
     return out
 

@@ -372,10 +372,16 @@ def test_block_laser_points_lie_on_the_wall(roscore, tmp_path):
 
 def test_joint_pose_trajectory_sets_the_joints_at_the_points_times(roscore, tmp_path):
     out, log = run(roscore, tmp_path, TRAJECTORY_MODELS, 'trajectory', '-u')
+    dt = out['dt']
+    assert out['rest'] == out['unstepped'] == pytest.approx(0.0, abs=1e-9)   # read, not stepped
     t1, q1 = out['first']
-    t2, q2 = out['second']
     assert t1 < 0.2 and q1 == pytest.approx(0.5, abs=1e-3)     # the first point at once
-    assert t2 > 0.2 and q2 == pytest.approx(1.0, abs=1e-3)     # the second 0.2 s later
+    # the second 0.2 s (the first point's time_from_start) after it, to the step
+    th, qh = out['held']
+    assert th == pytest.approx(t1 + 0.2 - dt, abs=1e-6) and qh == pytest.approx(0.5, abs=1e-3)
+    t2, q2 = out['second']
+    assert t2 == pytest.approx(t1 + 0.2, abs=1e-6) and q2 == pytest.approx(1.0, abs=1e-3)
+    assert out['after'][1] == pytest.approx(1.0, abs=1e-3)     # the last point stays
     base, after = out['base_kept']
     assert after == pytest.approx(base, abs=1e-3)
     assert 'updating configuration [1/2]' in log
