@@ -46,14 +46,14 @@ class _Publisher:
 
     def __init__(self):
         self._fan = Fanout()
-        self._handles, self._dead, self._seen, self.handed = {}, set(), None, False
+        self._handles, self._dead, self._seen, self.handed = {}, set(), None, None
 
     def publish(self, conns, data):
         """What FanoutPublisher.publish does around rospy's write loop."""
         if conns is not self._seen:
             self._sync(conns)
         self._dead.update(self._fan.take_dead())
-        self.handed = False
+        data = bytes(bytearray(data))           # a new object per publish, as rospy's buffer
         for c in conns:
             c.write_data(data)
         self._fan.flush()
@@ -137,7 +137,6 @@ def test_a_failed_socket_ends_the_connection(pub, pairs):
     with pytest.raises(TransportTerminated):         # rospy then drops the connection
         c1.write_data(b'two')
     assert t1.closed and not t2.closed
-    pub.handed = False
     assert c2.write_data(b'two') is True
     pub._fan.flush()
     assert b2.recv(100) == b'onetwo'

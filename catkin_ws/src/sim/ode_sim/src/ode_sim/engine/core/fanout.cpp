@@ -18,6 +18,11 @@ int Fanout::Add(int fd) {
   const int copy = fcntl(fd, F_DUPFD_CLOEXEC, 0);
   if (copy < 0) return -1;
   std::lock_guard<std::mutex> lock(mu_);
+  if (stop_) {
+    close(copy);
+    errno = EBADF;
+    return -1;
+  }
   const int handle = next_handle_++;
   fds_[handle] = copy;
   return handle;

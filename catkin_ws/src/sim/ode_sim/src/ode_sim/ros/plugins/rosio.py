@@ -2,6 +2,7 @@
 `ctx.wall`): the node passes RosIO() and WallClock(); unit tests without a master get the
 defaults MemoryIO() (publishers keep what they publish, no subscribers or services) and may
 pass a FakeClock so waits cost no wall time."""
+import threading
 import time
 
 import rospy
@@ -134,15 +135,16 @@ class FanoutPublisher(rospy.Publisher):
         self._handles = {}          # QueuedConnection -> the fan-out's handle
         self._dead = set()          # handles whose socket failed (connection still listed)
         self._seen = None           # impl.connections as last synchronised
-        self.handed = False         # this publish's frame handed over
+        self._sync_lock = threading.Lock()      # publish() runs in the service threads too
+        self.handed = None          # the frame last handed over
 
     def publish(self, *args, **kwds):
         impl = self.impl
         if impl is not None:
             if impl.connections is not self._seen:      # rospy replaces the list on a change
-                self._sync(impl.connections)
+                with self._sync_lock:
+                    self._sync(impl.connections)
             self._dead.update(self._fan.take_dead())
-        self.handed = False
         return super().publish(*args, **kwds)
 
     def _sync(self, conns):
@@ -170,7 +172,8 @@ class FanoutPublisher(rospy.Publisher):
 
 class _FanoutWrite:
     """write_data of a QueuedConnection whose frames FanoutPublisher's thread sends: the first
-    of a publish's connections hands the frame over, the others only count it."""
+    of a publish's connections hands the frame over, the others only count it (rospy writes
+    one publish's bytes object to every connection, under the publisher's lock)."""
     __slots__ = ('pub', 'c', 'handle')
 
     def __init__(self, pub, c, handle):
@@ -183,9 +186,9 @@ class _FanoutWrite:
             pub._dead.discard(self.handle)
             t.close()
             raise TransportTerminated('connection closed')
-        if not pub.handed:
+        if data is not pub.handed:
             pub._fan.publish(data)
-            pub.handed = True
+            pub.handed = data
         t.stat_bytes += len(data)
         t.stat_num_msg += 1
         return True
