@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """A user of the gazebo_plugins for test_plugins_gazebo_more.py: `plugin_client.py MODE` reads
 a plugin's topics / calls its services against a running sim_node, reads the simulated truth
-(/gazebo/get_model_state, /gazebo/model_states) and prints one JSON object."""
+(/gazebo/get_model_state, /gazebo/model_states) and prints one JSON object. A world started
+paused (-u) is driven by /gazebo/step_world, commands are in place and messages have arrived
+before anything is read (the simulator's bus statistics say so), never after a wall-clock sleep:
+what the plugins get and when they are sampled is the same on a busy machine."""
 import json
 import math
 import sys
@@ -26,18 +29,6 @@ def sim_time():
     return svc('/gazebo/get_world_properties', gs.GetWorldProperties)().sim_time
 
 
-def run_for(seconds, timeout=120.0):
-    """Unpause for `seconds` of sim time, then pause."""
-    t_end = sim_time() + seconds
-    svc('/gazebo/unpause_physics', Empty)()
-    deadline = time.monotonic() + timeout
-    while sim_time() < t_end:
-        if time.monotonic() > deadline:
-            raise SystemExit('sim time did not advance')
-        time.sleep(0.02)
-    svc('/gazebo/pause_physics', Empty)()
-
-
 def time_step():
     return svc('/gazebo/get_physics_properties', gs.GetPhysicsProperties)().time_step
 
@@ -57,30 +48,116 @@ def step_to(t_end):
     return step(n) if n > 0 else sim_time()
 
 
-def wait_connected(pub, timeout=60.0):
-    """Until the publisher has a subscriber (a hang guard, not a measure)."""
-    deadline = time.monotonic() + timeout
-    while pub.get_num_connections() == 0:
-        if time.monotonic() > deadline:
-            raise SystemExit('nobody subscribed to %s' % pub.resolved_name)
-        time.sleep(0.02)
+def step_through(t_end, chunk, flush=()):
+    """step_to(t_end) in chunks of at most CHUNK s of sim time, each followed by
+    wait_flushed(topic, msgs) for each pair of FLUSH: with no more messages published in a
+    chunk than a publisher's queue holds, every one reaches its list, however fast the steps run
+    (a queue of 1 would drop all but the last of a burst). The sim time after."""
+    t = sim_time()
+    while t < t_end - 1e-9:
+        t = step_to(min(t_end, t + chunk))
+        for topic, msgs in flush:
+            wait_flushed(topic, msgs)
+    return t
 
 
-def wait_delivered(topic, n, node='/gazebo', timeout=60.0):
-    """Until NODE has read N messages of TOPIC (its getBusStats; rospy counts a message when
-    it has read it, then runs the callback on the same thread)."""
+def wait_connected(pub):
+    """Until the publisher has a subscriber."""
+    wait_until(lambda: pub.get_num_connections() > 0, 'a subscriber of ' + pub.resolved_name)
+
+
+_GAZEBO = []
+
+
+def gazebo():
+    """The simulator node's XML-RPC API (getBusInfo / getBusStats)."""
     import rosgraph
     from xmlrpc.client import ServerProxy
-    proxy = ServerProxy(rosgraph.Master(rospy.get_name()).lookupNode(node))
+    if not _GAZEBO:
+        rospy.wait_for_service('/gazebo/get_world_properties', timeout=60)     # it is up
+        _GAZEBO.append(ServerProxy(rosgraph.Master(rospy.get_name()).lookupNode('/gazebo')))
+    return _GAZEBO[0]
+
+
+def wait_until(cond, what, timeout=60.0):
+    """Poll COND until true; the timeout is a hang guard, not a measure."""
     deadline = time.monotonic() + timeout
-    while True:
-        _code, _msg, (_pubs, subs, _srvs) = proxy.getBusStats(rospy.get_name())
-        read = sum(c[2] for name, conns in subs if name == topic for c in conns)
-        if read >= n:
-            return
+    while not cond():
         if time.monotonic() > deadline:
-            raise SystemExit('%s read %d of %d messages on %s' % (node, read, n, topic))
+            raise SystemExit('timed out waiting for ' + what)
         time.sleep(0.02)
+
+
+def wait_subscribed(topic):
+    """Until the simulator publishes TOPIC to this node (its getBusInfo): every message it
+    publishes from then on reaches us."""
+    me = rospy.get_name()
+
+    def connected():
+        _code, _msg, info = gazebo().getBusInfo(me)
+        return any(c[1] == me and c[2] == 'o' and c[4] == topic and c[5] for c in info)
+    wait_until(connected, '/gazebo to publish %s to %s' % (topic, me))
+
+
+def next_message(topic, typ):
+    """One more step of the paused world and the message the simulator published on TOPIC in
+    it (a fresh subscription, connected before that step; for a topic published every step,
+    whose queue may drop older messages, and for messages without a header.seq)."""
+    me = rospy.get_name()
+
+    def links():
+        _code, _msg, info = gazebo().getBusInfo(me)
+        return {c[0] for c in info if c[1] == me and c[2] == 'o' and c[4] == topic and c[5]}
+    before = links()
+    got = []
+    sub = rospy.Subscriber(topic, typ, got.append)
+    wait_until(lambda: links() - before, '/gazebo to publish %s to %s' % (topic, me))
+    t = step(1)
+    wait_until(lambda: got, 'a message on ' + topic)
+    sub.unregister()
+    return got[0], t
+
+
+def received(topic):
+    """Bytes the simulator has read on TOPIC (its getBusStats): rospy counts them as it reads
+    them off the socket, before it runs the callback, and a subscriber's queue_size may drop
+    messages that came in one read, so bytes, not messages."""
+    _code, _msg, (_pubs, subs, _srvs) = gazebo().getBusStats(rospy.get_name())
+    return sum(c[1] for name, conns in subs if name == topic for c in conns)
+
+
+def wire_size(msg):
+    from io import BytesIO
+    buff = BytesIO()
+    msg.serialize(buff)
+    return buff.tell() + 4
+
+
+def send(pub, msg, topic):
+    """Publish MSG and wait until the simulator has read it off its socket."""
+    want = received(topic) + wire_size(msg)
+    pub.publish(msg)
+    wait_until(lambda: received(topic) >= want, '/gazebo to read a message on ' + topic)
+
+
+def command(pub, msg, topic):
+    """MSG in place before the next step, whatever the load: sent twice, the second only once
+    the simulator has read the first; it reads the second in its next read, after the first's
+    callback returned (the repeat's own callback sets the same command again)."""
+    send(pub, msg, topic)
+    send(pub, msg, topic)
+
+
+def wait_flushed(topic, msgs):
+    """Until the last message the (paused) simulator published on TOPIC has reached MSGS (a
+    subscriber's list; a queue may drop older ones, never the last): the publisher's bytes sent
+    over one message's size is the number it published, the last one's header.seq the number
+    of the last that arrived. Stamped messages of a fixed size."""
+    def flushed():
+        _code, _msg, (pubs, _subs, _srvs) = gazebo().getBusStats(rospy.get_name())
+        sent = sum(p[1] for p in pubs if p[0] == topic)
+        return sent == (msgs[-1].header.seq * wire_size(msgs[-1]) if msgs else 0)
+    wait_until(flushed, 'the messages on %s' % topic)
 
 
 def state(name):
@@ -125,20 +202,24 @@ def mode_range():
 def mode_planar():
     """planar_move driven by cmd_vel; odometry and p3d against the model's true state."""
     out = {}
-    odoms, truths, states = [], [], []
-    rospy.Subscriber('/gazebo/model_states', gm.ModelStates, states.append)
+    odoms, truths = [], []
     rospy.Subscriber('/odom', Odometry, odoms.append)
     rospy.Subscriber('/mover/ground_truth', Odometry, truths.append)
-    pub = rospy.Publisher('/cmd_vel', Twist, queue_size=1, latch=True)
+    for topic in ('/odom', '/mover/ground_truth'):
+        wait_subscribed(topic)
+    pub = rospy.Publisher('/cmd_vel', Twist, queue_size=10)
+    wait_connected(pub)
     cmd = Twist()
     cmd.linear.x, cmd.linear.y = 0.5, 0.2
-    pub.publish(cmd)
-    time.sleep(1.0)
+    command(pub, cmd, '/cmd_vel')
     start, out['t_start'] = state('mover'), sim_time()
-    run_for(2.0)
+    # odometry every 0.051 s from a queue of 1 (as the original's): flushed every 0.05 s
+    flush = (('/odom', odoms), ('/mover/ground_truth', truths))
+    step_through(out['t_start'] + 2.0 - time_step(), 0.05, flush)
+    ms, t_end = next_message('/gazebo/model_states', gm.ModelStates)     # of the last step
     end = state('mover')
-    t_end = sim_time()
-    time.sleep(0.5)
+    for topic, msgs in flush:
+        wait_flushed(topic, msgs)
     o, g = odoms[-1], truths[-1]
     out['start'], out['end'], out['t_end'] = start, end, t_end
     out['odom'] = {'stamp': o.header.stamp.to_sec(), 'frame': o.header.frame_id,
@@ -153,62 +234,57 @@ def mode_planar():
                   'vel': [g.twist.twist.linear.x, g.twist.twist.linear.y]}
     out['odom_n'] = len(odoms)
     out['odom_stamps'] = [m.header.stamp.to_sec() for m in odoms[-5:]]
-    # /gazebo/model_states of the last step before the pause
-    ms = states[-1]
     i = ms.name.index('mover')
     out['model_states'] = [ms.pose[i].position.x, ms.pose[i].position.y, ms.pose[i].position.z]
     # turn on the spot
     cmd = Twist()
     cmd.angular.z = 0.5
-    pub.publish(cmd)
-    time.sleep(0.5)
-    run_for(1.0)
+    command(pub, cmd, '/cmd_vel')
+    step_to(t_end + 1.0)
     out['turned'] = state('mover')
+    wait_flushed('/odom', odoms)
     out['odom_w'] = odoms[-1].twist.twist.angular.z
     return out
 
 
 def mode_force():
     out = {}
-    pub = rospy.Publisher('/push', Wrench, queue_size=1, latch=True)
+    pub = rospy.Publisher('/push', Wrench, queue_size=10)
+    wait_connected(pub)
     w = Wrench()
     w.force.x = 2.0
-    pub.publish(w)
-    time.sleep(1.0)
+    command(pub, w, '/push')
     s1, t1 = state('puck'), sim_time()
-    run_for(1.0)
-    s2, t2 = state('puck'), sim_time()
+    t2 = step_to(t1 + 1.0)
+    s2 = state('puck')
     out['accel'] = (s2['vel'][0] - s1['vel'][0]) / (t2 - t1)
-    pub.publish(Wrench())
-    time.sleep(1.0)
-    s3 = state('puck')
-    run_for(0.5)
+    command(pub, Wrench(), '/push')
+    s3, t3 = state('puck'), sim_time()
+    step_to(t3 + 0.5)
     s4 = state('puck')
     out['coast'] = [s3['vel'][0], s4['vel'][0]]
     return out
 
 
 def mode_gripper():
+    """The parcel's state and the grasping flag the plugin publishes at the next step."""
     out = {}
-    grasp = []
-    rospy.Subscriber('/gripper/grasping', Bool, lambda m: grasp.append(m.data))
+
+    def grasping():
+        return next_message('/gripper/grasping', Bool)[0].data
     svc('/gripper/on', Empty)()
-    run_for(1.0)
+    step_to(sim_time() + 1.0)
     out['held'] = state('parcel')['xyz']
-    out['grasping_on'] = grasp[-1] if grasp else None
+    out['grasping_on'] = grasping()
     svc('/gripper/off', Empty)()
-    run_for(1.0)
+    step_to(sim_time() + 1.0)
     out['dropped'] = state('parcel')['xyz']
-    time.sleep(0.3)
-    run_for(0.1)
-    time.sleep(0.3)
-    out['grasping_off'] = grasp[-1] if grasp else None
+    out['grasping_off'] = grasping()
     # on again with the parcel far below: nothing within reach, it stays on the ground
     svc('/gripper/on', Empty)()
-    run_for(0.5)
+    step_to(sim_time() + 0.5)
     out['out_of_reach'] = state('parcel')['xyz']
-    time.sleep(0.3)
-    out['grasping_far'] = grasp[-1] if grasp else None
+    out['grasping_far'] = grasping()
     return out
 
 
@@ -240,8 +316,7 @@ def mode_trajectory():
                    JointTrajectoryPoint(positions=[1.0], time_from_start=rospy.Duration(0.3))]
     dt = time_step()
     t0, rest = sim_time(), swivel()
-    pub.publish(traj)
-    wait_delivered('/set_joint_trajectory', 1)
+    send(pub, traj, '/set_joint_trajectory')
     base = state('turret')['xyz']
     out['dt'], out['rest'], out['unstepped'] = dt, rest, swivel()
     # one step at a time until the first point is set (at most 0.2 s of sim time)
@@ -317,14 +392,17 @@ def mode_gps():
     fixes, vels = [], []
     rospy.Subscriber('/rover/fix', NavSatFix, fixes.append)
     rospy.Subscriber('/rover/fix_velocity', Vector3Stamped, vels.append)
-    pub = rospy.Publisher('/rover/cmd_vel', Twist, queue_size=1, latch=True)
+    for topic in ('/rover/fix', '/rover/fix_velocity'):
+        wait_subscribed(topic)
+    pub = rospy.Publisher('/rover/cmd_vel', Twist, queue_size=10)
+    wait_connected(pub)
     cmd = Twist()
     cmd.linear.x, cmd.linear.y = 1.0, 0.5
-    pub.publish(cmd)
-    time.sleep(1.0)
-    run_for(3.0)
-    end, t_end = state('rover'), sim_time()
-    time.sleep(0.5)
+    command(pub, cmd, '/rover/cmd_vel')
+    # 10 Hz from queues of 10: flushed every 0.5 s
+    flush = (('/rover/fix', fixes), ('/rover/fix_velocity', vels))
+    t_end = step_through(sim_time() + 3.0, 0.5, flush)
+    end = state('rover')
     f, v = fixes[-1], vels[-1]
     return {'end': end, 't_end': t_end, 'stamp': f.header.stamp.to_sec(),
             'fix': [f.latitude, f.longitude, f.altitude], 'frame': f.header.frame_id,
@@ -342,11 +420,11 @@ def mode_imu_gpu():
     req = gm.ModelState(model_name='spinner', reference_frame='world')
     req.pose.position.z, req.pose.orientation.w = 1.0, 1.0
     req.twist.angular.z = 0.5
+    wait_subscribed('/spinner/imu')
     svc('/gazebo/set_model_state', gs.SetModelState)(req)
-    time.sleep(1.0)
-    run_for(1.0)
-    end, t_end = state('spinner'), sim_time()
-    time.sleep(0.5)
+    t_end = step_to(sim_time() + 1.0)
+    end = state('spinner')
+    wait_flushed('/spinner/imu', imus)
     m = imus[-1]
     q = m.orientation
     yaw = math.atan2(2 * (q.w * q.z + q.x * q.y), 1 - 2 * (q.y * q.y + q.z * q.z))
