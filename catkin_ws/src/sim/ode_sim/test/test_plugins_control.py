@@ -230,10 +230,15 @@ def test_lockstep_waits_for_the_command_of_the_period():
     pw, m, plug = bridge({'hinge': POS}, lockstep=True, controlPeriod=0.01)
     plug.cmd_sub = FakeSub(1)
     plug.lockstep_timeout = 5.0
-    answered = []                                   # a client answering each state after 50 ms
+    answered = []                   # a client answering each new state 50 ms after it came
 
     def client():
+        deadline = time.monotonic() + 60                # a hang guard, not a measure
         for _ in range(3):
+            # the next state (the simulator waits for its command), whenever it comes
+            while len(plug.state_pub.sent) <= len(answered):
+                assert time.monotonic() < deadline, 'no state %d' % len(answered)
+                time.sleep(0.001)
             time.sleep(0.05)
             stamp = plug.state_pub.sent[-1].header.stamp
             answered.append(stamp.to_sec())
