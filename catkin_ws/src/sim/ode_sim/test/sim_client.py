@@ -51,6 +51,16 @@ def sim_time():
     return svc('/gazebo/get_world_properties', gs.GetWorldProperties)().sim_time
 
 
+def wait_sim(t_end, timeout=120.0):
+    """Until the running simulation reaches sim time t_end (the timeout is a hang guard): a
+    state read then has had that much simulated time, however slowly the machine runs."""
+    deadline = time.monotonic() + timeout
+    while sim_time() < t_end:
+        if time.monotonic() > deadline:
+            raise SystemExit('sim time did not reach %g' % t_end)
+        time.sleep(0.02)
+
+
 def api():
     out = {}
     t0 = _api_spawning(out)
@@ -94,7 +104,7 @@ def _api_running(out, t0):
     time.sleep(1.0)
     t1 = sim_time()
     out['running'] = t1 > t0
-    time.sleep(2.0)     # the arm settles (pacing itself: test_pacing_*, bench/sim_pacing)
+    wait_sim(t0 + 3.0)     # the arm settles: 3 s of sim time
     out['arm_settled'] = state('arm')
     out['relative'] = state('arm', 'cone')
     ms = rospy.wait_for_message('/gazebo/model_states', gm.ModelStates, timeout=10)
@@ -129,7 +139,7 @@ def _api_running(out, t0):
     r = svc('/gazebo/apply_body_wrench', gs.ApplyBodyWrench)(
         'cone::link', '', Point(0, 0, 0.2), w, rospy.Time(0), rospy.Duration(0.2))
     out['wrench'] = r.success
-    time.sleep(1.0)
+    wait_sim(sim_time() + 1.0)
     out['pushed'] = state('cone')['xyz']
 
 
@@ -154,7 +164,7 @@ def _api_physics(out):
         0.004, phys.max_update_rate, phys.gravity, phys.ode_config)
     t1 = sim_time()
     unpause()
-    time.sleep(0.3)
+    wait_sim(t1 + 0.3)
     pause()
     t2 = sim_time()
     svc('/gazebo/set_physics_properties', gs.SetPhysicsProperties)(
