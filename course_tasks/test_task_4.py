@@ -68,6 +68,21 @@ def wait_model(env, name, proc, timeout=60.0):
     raise AssertionError('model %s never appeared (%s)\n--- launch log:\n%s' % (name, last, proc.output()[-3000:]))
 
 
+def sim_time(env):
+    """`rosservice call /gazebo/get_world_properties`: the simulator's time."""
+    out = S.sh(['rosservice', 'call', '/gazebo/get_world_properties'], env, timeout=30)
+    return float(yaml.safe_load(out)['sim_time'])
+
+
+def wait_sim(env, t_end, timeout=300.0):
+    """Until the simulation reaches sim time T_END (the timeout is a hang guard): what the robot
+    does meanwhile is the same on a slow or busy machine."""
+    deadline = time.monotonic() + timeout
+    while sim_time(env) < t_end:
+        assert time.monotonic() < deadline, 'sim time did not reach %g' % t_end
+        time.sleep(0.5)
+
+
 def test_starter_layout():
     for d in ('launch', 'urdf', 'worlds', 'config', 'scripts', 'models'):
         assert os.path.isdir(os.path.join(STARTER, d)), d
@@ -108,7 +123,7 @@ def test_sim_launch_drive_and_spawn(workspace, roscore, tmp_path):
                         '{linear: {x: 0.3}, angular: {z: 0.0}}'], env, tmp_path / 'pub.log')
         odom = S.wait_topic('/odom', env, proc=p)
         assert odom['header']['frame_id'] == 'odom' and odom['child_frame_id'] == 'base_link'
-        time.sleep(4.0)
+        wait_sim(env, sim_time(env) + 4.0)     # 4 s of driving in sim time
         pub.stop()
         pub = None
         S.sh(['rostopic', 'pub', '-1', '/cmd_vel', 'geometry_msgs/Twist', '{}'], env, timeout=30)
