@@ -9,6 +9,7 @@ import importlib.util
 import math
 import os
 import pty
+import re
 import select
 import shutil
 import time
@@ -142,7 +143,13 @@ def test_talker_listener(roscore, tmp_path):
         S.wait_output(listener, 'I heard hello world')
         # Ctrl+C on the talker: the listener stops receiving
         talker.stop()
-        time.sleep(0.5)
+        said = re.findall(r'hello world (\S+)', talker.output())
+        # what the talker said before it stopped may still be on its way (a busy machine): wait
+        # for its last line (10 s at most: a message cut by the Ctrl+C never comes)
+        deadline = time.monotonic() + 10
+        while ('I heard hello world %s' % said[-1]) not in listener.output() \
+                and time.monotonic() < deadline:
+            time.sleep(0.1)
         n = listener.output().count('I heard')
         time.sleep(1.5)
         assert listener.output().count('I heard') == n
