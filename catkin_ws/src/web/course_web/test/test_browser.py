@@ -5,7 +5,6 @@ trail after a Twist, the arrow keys and the teleop pad move the turtle, the plot
 line, the 3D panel shows the simulated robot and its laser scan (pixels of screenshots)."""
 import os
 import sys
-import time
 import urllib.request
 
 import numpy as np
@@ -135,26 +134,31 @@ def test_3d_panel_shows_robot_and_scan(stack):
     s.wait(lambda: s.stats('view3d')['visibleLinks'] >= 5, 'the robot model placed by TF in the 3D panel', timeout=90)
     s.wait(lambda: ((s.stats('view3d')['displays'].get('/scan') or {}).get('count') or 0) > 100,
            'the laser scan (/scan) in the 3D panel', timeout=60)
-    time.sleep(0.5)   # a frame or two after the last update
     red = lambda img: int(((img[:, :, 0] > 235) & (img[:, :, 1] < 40) & (img[:, :, 2] < 40)).sum())
-    with_all = s.shot('.view3d-canvas', 'view3d')
+
+    def shot_when(name, ok, what):
+        """Screenshots until OK(picture): the view draws on its own frames, later on a busy
+        machine (the wait is a hang guard); the picture."""
+        def take():
+            img = s.shot('.view3d-canvas', name)
+            return (img,) if ok(img) else None
+        return s.wait(take, what, timeout=30)[0]
+    with_all = shot_when('view3d', lambda img: red(img) > 100, 'red laser points in the 3D view')
     # the scan: red points that go away when its display is switched off
     s.js("document.querySelectorAll('.view3d-displays label').forEach(l => {"
          " if (l.textContent.startsWith('/scan ')) l.querySelector('input').click(); })")
-    time.sleep(0.5)
-    no_scan = s.shot('.view3d-canvas', 'view3d_no_scan')
-    assert red(with_all) - red(no_scan) > 100, 'laser points: %d red pixels with the scan, %d without' % (
-        red(with_all), red(no_scan))
+    no_scan = shot_when('view3d_no_scan', lambda img: red(with_all) - red(img) > 100,
+                        'the laser points to go with the /scan display off (%d red pixels with it)'
+                        % red(with_all))
     # the robot: the middle of the view (the camera follows base_footprint) changes without it
     s.js("document.querySelector('.panel[data-type=view3d] input[type=checkbox]:nth-of-type(1)');"
          "[...document.querySelectorAll('.panel[data-type=view3d] label')].find(l => l.textContent.includes('robot model'))"
          ".querySelector('input').click()")
-    time.sleep(0.5)
-    no_robot = s.shot('.view3d-canvas', 'view3d_no_robot')
-    h, w = no_robot.shape[:2]
+    h, w = no_scan.shape[:2]
     mid = (slice(h // 4, 3 * h // 4), slice(w // 4, 3 * w // 4))
-    diff = int((np.abs(no_scan[mid].astype(int) - no_robot[mid]).max(axis=2) > 40).sum())
-    assert diff > 500, 'the robot model covers only %d pixels of the view\'s middle' % diff
+    changed = lambda img: int((np.abs(no_scan[mid].astype(int) - img[mid]).max(axis=2) > 40).sum())
+    shot_when('view3d_no_robot', lambda img: changed(img) > 500,
+              'the robot model to go from the view\'s middle (more than 500 pixels change)')
 
 
 def test_page_connected_through_rosauth(stack):
