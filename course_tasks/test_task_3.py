@@ -128,16 +128,25 @@ def test_robot_launch_with_rviz_and_view_frames(workspace, roscore, tmp_path):
         wait_for(lambda: '/rviz' in S.sh(['rostopic', 'info', '/tf'], env, check=False).split('Subscribers:')[-1]
                  or (not p.alive() and pytest.fail('roslaunch exited: ' + p.output()[-2000:])),
                  60, 1.0, 'rviz subscribing to /tf')
-        time.sleep(5.0)
-        assert p.alive(), p.output()[-2000:]
-        shot = screenshot(xvfb.display, str(tmp_path / 'rviz.png'))
-        hist = subprocess.run(['convert', shot, '-format', '%c', 'histogram:info:-'], stdout=subprocess.PIPE,
-                              check=True, timeout=60).stdout.decode()
-        orange = 0
-        for m in re.finditer(r'^\s*(\d+):\s*\(\s*(\d+),\s*(\d+),\s*(\d+)', hist, re.M):
-            n, r, g, b = (int(x) for x in m.groups())
-            if r > 120 and 0.25 * r < g < 0.65 * r and b < 0.25 * r:
-                orange += n
+        shot = str(tmp_path / 'rviz.png')
+
+        def orange_pixels():
+            assert p.alive(), p.output()[-2000:]
+            screenshot(xvfb.display, shot)
+            hist = subprocess.run(['convert', shot, '-format', '%c', 'histogram:info:-'],
+                                  stdout=subprocess.PIPE, check=True, timeout=60).stdout.decode()
+            orange = 0
+            for m in re.finditer(r'^\s*(\d+):\s*\(\s*(\d+),\s*(\d+),\s*(\d+)', hist, re.M):
+                n, r, g, b = (int(x) for x in m.groups())
+                if r > 120 and 0.25 * r < g < 0.65 * r and b < 0.25 * r:
+                    orange += n
+            return orange
+        # screenshots until RViz has drawn the robot (later on a busy machine; a hang guard)
+        deadline = time.monotonic() + 90
+        orange = orange_pixels()
+        while orange <= 2000 and time.monotonic() < deadline:
+            time.sleep(1.0)
+            orange = orange_pixels()
         assert orange > 2000, 'only %d orange pixels in %s' % (orange, shot)
         out = S.sh(['rosrun', 'tf2_tools', 'view_frames.py'], env, cwd=str(tmp_path), timeout=60)
         assert os.path.getsize(tmp_path / 'frames.pdf') > 1000, out
