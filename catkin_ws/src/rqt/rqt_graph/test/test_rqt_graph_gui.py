@@ -38,8 +38,15 @@ def test_graph_shows_talker_listener_and_chatter(roscore, xvfb, tmp_path):
         assert topics['topics'] == ['/chatter']
         assert sorted(topics['edges']) == sorted([[talker, '/chatter'], ['/chatter', listener]])
         assert topics['tooltips']['t_/chatter'] == 'topic:/chatter'
-        time.sleep(1.0)
-        png = screenshot(xvfb.display, str(tmp_path / 'rqt_graph.png'))
+        png = str(tmp_path / 'rqt_graph.png')
+
+        def painted():      # screenshots until the items are painted (later on a busy machine)
+            rgb = load_rgb(screenshot(xvfb.display, png))
+            return all(0.03 < dark_fraction(rgb, topics['rects'][key]) < 0.6
+                       for key in ('n_' + talker, 'n_' + listener, 't_/chatter'))
+        deadline = time.monotonic() + 30                # a hang guard
+        while not painted() and time.monotonic() < deadline:
+            time.sleep(0.5)
         flag.write_text('done')
         keep = os.environ.get('COURSE_SCREENSHOT_DIR')
         if keep:

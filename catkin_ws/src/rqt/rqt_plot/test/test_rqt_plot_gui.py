@@ -42,7 +42,14 @@ def test_plots_sine_and_cosine(roscore, xvfb, tmp_path):
                  what='rqt_plot to start plotting')
         assert 'plotting /pt/x (geometry_msgs/Point on /pt)' in plot.output()
         time.sleep(6.0)                          # 1.5 periods of the 4 s wave
-        png = screenshot(xvfb.display, str(tmp_path / 'rqt_plot.png'))
+        png = str(tmp_path / 'rqt_plot.png')
+
+        def drawn():        # screenshots until both waves span the window (a busy machine draws
+            rgb = load_rgb(screenshot(xvfb.display, png))      # later; 60 s hang guard)
+            return all(n[0] > 300 and n[1] > 150 for n in (curve_extent(rgb, c) for c in (BLUE, RED)))
+        deadline = time.monotonic() + 60
+        while not drawn() and time.monotonic() < deadline:
+            time.sleep(0.5)
         keep = os.environ.get('COURSE_SCREENSHOT_DIR')
         if keep:
             os.makedirs(keep, exist_ok=True)
