@@ -83,7 +83,8 @@ def root_link(model):
     kids = {j['child'] for j in model['joints'].values()}
     roots = [l for l in model['links'] if l not in kids]
     if len(roots) != 1:
-        raise ModelError('the links form %d trees (roots: %s), one tree expected' % (len(roots), ', '.join(sorted(roots))))
+        raise ModelError('the links form %d trees (roots: %s), one tree expected'
+                         % (len(roots), ', '.join(sorted(roots))))
     return roots[0]
 
 
