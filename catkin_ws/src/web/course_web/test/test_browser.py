@@ -48,7 +48,8 @@ class Stack(Page):
         ok = self.driver.execute_async_script(
             "const done = arguments[arguments.length - 1];"
             "new ROSLIB.Service({ros: courseWeb.ros(), name: '/' + arguments[0] + '/teleport_absolute',"
-            " serviceType: 'turtlesim/TeleportAbsolute'}).callService({x: arguments[1], y: arguments[2], theta: arguments[3]},"
+            " serviceType: 'turtlesim/TeleportAbsolute'})"
+            ".callService({x: arguments[1], y: arguments[2], theta: arguments[3]},"
             " () => done(true), e => done(String(e)));", turtle, x, y, theta)
         assert ok is True, 'teleport_absolute through rosbridge failed: %s' % ok
         return self.wait(lambda: np.hypot(*np.subtract(self.pose(turtle), (x, y))) < 0.05,
@@ -58,7 +59,8 @@ class Stack(Page):
         """Twists from the browser through rosbridge (roslibjs), as any web client sends them:
         10 at 10 Hz (a new ROS publisher's first messages may go out before the subscriber is
         connected, so rostopic pub -1 waits; a stream does not need to)."""
-        self.js("const t = new ROSLIB.Topic({ros: courseWeb.ros(), name: arguments[0], messageType: 'geometry_msgs/Twist'});"
+        self.js("const t = new ROSLIB.Topic({ros: courseWeb.ros(), name: arguments[0],"
+                " messageType: 'geometry_msgs/Twist'});"
                 "let n = 0; const id = setInterval(() => {"
                 " t.publish({linear: {x: arguments[1], y: 0, z: 0}, angular: {x: 0, y: 0, z: arguments[2]}});"
                 " if (++n >= arguments[3]) clearInterval(id); }, 100);", topic, vx, wz, times)
@@ -134,7 +136,9 @@ def test_3d_panel_shows_robot_and_scan(stack):
     s.wait(lambda: s.stats('view3d')['visibleLinks'] >= 5, 'the robot model placed by TF in the 3D panel', timeout=90)
     s.wait(lambda: ((s.stats('view3d')['displays'].get('/scan') or {}).get('count') or 0) > 100,
            'the laser scan (/scan) in the 3D panel', timeout=60)
-    red = lambda img: int(((img[:, :, 0] > 235) & (img[:, :, 1] < 40) & (img[:, :, 2] < 40)).sum())
+
+    def red(img):
+        return int(((img[:, :, 0] > 235) & (img[:, :, 1] < 40) & (img[:, :, 2] < 40)).sum())
 
     def shot_when(name, ok, what):
         """Screenshots until OK(picture): the view draws on its own frames, later on a busy
@@ -152,11 +156,14 @@ def test_3d_panel_shows_robot_and_scan(stack):
                         % red(with_all))
     # the robot: the middle of the view (the camera follows base_footprint) changes without it
     s.js("document.querySelector('.panel[data-type=view3d] input[type=checkbox]:nth-of-type(1)');"
-         "[...document.querySelectorAll('.panel[data-type=view3d] label')].find(l => l.textContent.includes('robot model'))"
+         "[...document.querySelectorAll('.panel[data-type=view3d] label')]"
+         ".find(l => l.textContent.includes('robot model'))"
          ".querySelector('input').click()")
     h, w = no_scan.shape[:2]
     mid = (slice(h // 4, 3 * h // 4), slice(w // 4, 3 * w // 4))
-    changed = lambda img: int((np.abs(no_scan[mid].astype(int) - img[mid]).max(axis=2) > 40).sum())
+
+    def changed(img):
+        return int((np.abs(no_scan[mid].astype(int) - img[mid]).max(axis=2) > 40).sum())
     shot_when('view3d_no_robot', lambda img: changed(img) > 500,
               'the robot model to go from the view\'s middle (more than 500 pixels change)')
 
