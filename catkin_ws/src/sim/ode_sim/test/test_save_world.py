@@ -40,7 +40,8 @@ WORLD = """<?xml version="1.0"?>
 """
 
 BOX = """<sdf version="1.6"><model name="unit_box"><pose>0 0 0.5 0 0 0</pose>
-  <link name="link"><inertial><mass>1</mass><inertia><ixx>0.166667</ixx><iyy>0.166667</iyy><izz>0.166667</izz></inertia></inertial>
+  <link name="link"><inertial><mass>1</mass>
+      <inertia><ixx>0.166667</ixx><iyy>0.166667</iyy><izz>0.166667</izz></inertia></inertial>
     <collision name="collision"><geometry><box><size>1 1 1</size></box></geometry></collision>
     <visual name="visual"><geometry><box><size>1 1 1</size></box></geometry>
       <material><script><name>Gazebo/Grey</name><uri>file://media/materials/scripts/gazebo.material</uri></script></material></visual>
@@ -48,15 +49,19 @@ BOX = """<sdf version="1.6"><model name="unit_box"><pose>0 0 0.5 0 0 0</pose>
 
 ARM = """<?xml version="1.0"?>
 <robot name="arm">
-  <link name="base"><inertial><mass value="5"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
+  <link name="base"><inertial><mass value="5"/>
+      <inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial>
     <collision><geometry><box size="0.4 0.4 0.2"/></geometry></collision>
     <visual><geometry><box size="0.4 0.4 0.2"/></geometry></visual></link>
-  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
+  <link name="arm"><inertial><origin xyz="0.25 0 0"/><mass value="0.5"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.01" iyz="0" izz="0.01"/></inertial>
     <collision><origin xyz="0.25 0 0"/><geometry><box size="0.5 0.05 0.05"/></geometry></collision></link>
-  <link name="wheel"><inertial><mass value="0.2"/><inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
+  <link name="wheel"><inertial><mass value="0.2"/>
+      <inertia ixx="0.001" ixy="0" ixz="0" iyy="0.001" iyz="0" izz="0.001"/></inertial>
     <collision><geometry><cylinder radius="0.05" length="0.02"/></geometry></collision></link>
   <joint name="shoulder" type="revolute"><parent link="base"/><child link="arm"/>
-    <origin xyz="0 0 0.3" rpy="0 0 0.2"/><axis xyz="0 0 1"/><limit lower="-2" upper="2" effort="10" velocity="1"/></joint>
+    <origin xyz="0 0 0.3" rpy="0 0 0.2"/><axis xyz="0 0 1"/>
+    <limit lower="-2" upper="2" effort="10" velocity="1"/></joint>
   <joint name="spin" type="continuous"><parent link="arm"/><child link="wheel"/>
     <origin xyz="0.5 0 0" rpy="1.5707963 0 0"/><axis xyz="0 0 1"/></joint>
   <gazebo reference="base"><material>Gazebo/Red</material><mu1>0.3</mu1><mu2>0.4</mu2></gazebo>
