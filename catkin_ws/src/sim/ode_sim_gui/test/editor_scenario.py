@@ -14,7 +14,7 @@ from course_testing import screenshot
 from course_testing.image import load_rgb
 from ode_sim_gui.client import SimClient
 from ode_sim_gui.window import MainWindow
-from scenario_common import wait_until
+from scenario_common import open_window, wait_until
 
 OUT = os.environ.get('SCENARIO_OUT', '/tmp')
 
@@ -124,12 +124,7 @@ def draw_walls(qtbot, win):
 
 
 def test_editing_in_the_window(qtbot, ros):
-    win = MainWindow(SimClient('/gazebo'))
-    qtbot.addWidget(win)
-    win.resize(1400, 900)
-    win.show()
-    qtbot.waitExposed(win)
-    wait_until(qtbot, lambda: 'ground_plane' in win.scene.model_names(), 120, 'the world')
+    win = open_window(qtbot, 'ground_plane', 'the world')
     win.view.camera.look_at((0.0, -7.0, 9.0), (0.0, 0.0, 0.0))
     win.view.update()
     place_sphere_and_light(qtbot, win)

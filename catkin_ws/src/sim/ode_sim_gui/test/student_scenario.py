@@ -12,9 +12,7 @@ from PyQt5 import QtCore, QtWidgets
 
 from course_testing import screenshot
 from course_testing.image import load_rgb
-from ode_sim_gui.client import SimClient
-from ode_sim_gui.window import MainWindow
-from scenario_common import wait_until
+from scenario_common import open_window, wait_until
 
 OUT = os.environ.get('SCENARIO_OUT', '/tmp')
 LIBRARY = ['traffic_cone', 'potted_plant', 'barrel']
@@ -162,13 +160,7 @@ def save_world(win, step):
 
 
 def test_student_builds_saves_a_scene(qtbot, ros):
-    win = MainWindow(SimClient('/gazebo'))
-    qtbot.addWidget(win)
-    win.resize(1400, 900)
-    win.show()
-    qtbot.waitExposed(win)
-    wait_until(qtbot, lambda: 'my_robot_model' in win.scene.model_names(), 120,
-               'the robot in the window')
+    win = open_window(qtbot, 'my_robot_model', 'the robot in the window')
     # the camera looks at the scene from above, as a student would turn it
     win.view.camera.look_at((0.0, -6.0, 7.0), (0.0, 0.0, 0.0))
     win.view.update()
