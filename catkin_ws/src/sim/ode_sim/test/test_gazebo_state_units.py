@@ -1,6 +1,7 @@
 """Unit tests (no roscore) of the /gazebo/* services' lookups (StateServices._model, _link,
 _reference, _seen_from) on a real PhysicsWorld: every "not found" answer and error line is
 gazebo_ros_api_plugin's text, and states are read relative to the reference entity."""
+import io
 import math
 import threading
 import types
@@ -14,7 +15,7 @@ from ode_sim.description import sdf
 from ode_sim.description.model import World
 from ode_sim.description.transforms import Pose
 from ode_sim.engine.physics import PhysicsWorld
-from ode_sim.ros import world_control
+from ode_sim.ros import convert, world_control
 from ode_sim.ros.gazebo_api import GazeboApi
 
 BOX = """<sdf version="1.6"><model name="box">
@@ -124,3 +125,50 @@ def test_states_relative_to_the_reference_entity(api):
     seen, error = api._seen_from('box', lambda: (Pose(), (np.zeros(3), np.zeros(3))), 'unused')
     assert error is None
     assert (seen[0].position.x, seen[0].position.y) == pytest.approx((-2, 1))
+
+
+ARM = """<sdf version="1.6"><model name="arm"><pose>0.5 -1 2 0 0 0.3</pose>
+  <link name="base"><pose>0.2 0.1 0 0.1 0 0.4</pose><inertial><mass>2</mass></inertial>
+    <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision></link>
+  <link name="tip"><pose>0.2 0.1 0.5 0 0 0</pose><inertial><mass>1</mass></inertial>
+    <collision name="c"><geometry><sphere><radius>0.05</radius></sphere></geometry></collision></link>
+  <joint name="j" type="revolute"><parent>base</parent><child>tip</child><axis><xyz>1 0 0</xyz></axis></joint>
+  </model></sdf>"""
+
+
+def test_model_and_link_states_on_the_wire(api):
+    """/gazebo/model_states and link_states are written as bytes straight from the engine's
+    tuples: what a subscriber deserializes is each entity's pose and twist as the Pose maths
+    give them (the canonical link's frame times its pose in the model; velocities at the
+    frame's origin), for a static model and a moving one whose canonical link is offset."""
+    pw = api.node.physics
+    pw.add_model(sdf.parse_sdf_model(ARM, 'arm.sdf', name='arm'))
+    for link in pw.models['arm'].links.values():
+        link.body.setLinearVel((0.3, -0.2, 0.1))
+        link.body.setAngularVel((0.5, 0.2, -1.0))
+    pw.step()
+    api._model_frame = convert.EntityStatesFrame(gm.ModelStates)
+    api._link_frame = convert.EntityStatesFrame(gm.LinkStates)
+    for make, cls, entries in (
+            (api._model_states, gm.ModelStates, [(n, m.canonical.pose() * m.canonical.desc.pose.inverse(), m)
+                                                 for n, m in pw.models.items()]),
+            (api._link_states, gm.LinkStates, [('%s::%s' % (n, ln), link.pose(), link)
+                                               for n, m in pw.models.items() for ln, link in m.links.items()])):
+        for _ in range(2):                  # the second time from the kept names
+            buff = io.BytesIO()
+            make().serialize(buff)
+            msg = cls().deserialize(buff.getvalue())
+            assert msg.name == [n for n, _p, _e in entries]
+            for k, (_n, pose, entity) in enumerate(entries):
+                got = msg.pose[k]
+                assert (got.position.x, got.position.y, got.position.z) == pytest.approx(tuple(pose.p), abs=1e-12)
+                q = (got.orientation.x, got.orientation.y, got.orientation.z, got.orientation.w)
+                assert q == pytest.approx(tuple(pose.q), abs=1e-12)
+                body = entity.canonical.body if hasattr(entity, 'canonical') else entity.body
+                lin = body.getPointVel(tuple(pose.p)) if body else (0.0, 0.0, 0.0)
+                ang = body.getAngularVel() if body else (0.0, 0.0, 0.0)
+                t = msg.twist[k]
+                assert (t.linear.x, t.linear.y, t.linear.z) == pytest.approx(lin, abs=1e-12)
+                assert (t.angular.x, t.angular.y, t.angular.z) == pytest.approx(ang, abs=1e-12)
+    moving = msg.twist[msg.name.index('arm::tip')]
+    assert moving.angular.z == pytest.approx(-1.0, abs=0.05)

@@ -300,8 +300,9 @@ def test_contract_over_real_topics_in_lockstep(roscore, tmp_path):
 
 
 def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
-    """With ROS up the plugin starts gazebo_ros_control_node in NS (here a stand-in script
-    that records its arguments) and stops it on shutdown; controllerNode=false starts none."""
+    """With ROS up and controllerNode=true the plugin starts gazebo_ros_control_node in NS (here
+    a stand-in script that records its arguments) and stops it on shutdown; controllerNode=false
+    starts none."""
     from ode_sim.ros.plugins import control
     import roslib.packages
     args = tmp_path / 'args'
@@ -320,7 +321,7 @@ def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
 
     monkeypatch.setattr(control.GazeboRosControl, '_load_ros_params', lambda self: None)
     monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [str(fake)])
-    _, _, plug = bridge({'hinge': POS}, io=LiveIO(), eStopTopic='estop')
+    _, _, plug = bridge({'hinge': POS}, io=LiveIO(), eStopTopic='estop', controllerNode='true')
     proc = plug.node_proc
     assert proc is not None and proc.poll() is None
     deadline = time.monotonic() + 10
@@ -334,7 +335,7 @@ def test_controller_node_started_and_stopped(monkeypatch, tmp_path):
     _, _, plug = bridge({'hinge': POS}, io=LiveIO(), controllerNode='false')
     assert plug.node_proc is None
     monkeypatch.setattr(roslib.packages, 'find_node', lambda pkg, node: [])
-    _, _, plug = bridge({'hinge': POS}, io=LiveIO())
+    _, _, plug = bridge({'hinge': POS}, io=LiveIO(), controllerNode='true')
     assert plug.node_proc is None       # not built: an ERROR, the bridge still loads
     with pytest.raises(ModelError, match='controllerNode'):
         bridge({'hinge': POS}, io=LiveIO(), controllerNode='maybe')

@@ -47,6 +47,7 @@ class SimLink:
         self.com = com                  # Pose of the COM (body) frame in the link frame
         self._com_inv = com.inverse()
         self._ci_p, self._ci_q = self._com_inv.tuples()
+        self._in_model_inv = desc.pose.inverse().tuples()    # the model frame in this link's
         self._static_pose = static_pose
         self.geoms = []
         self.prev_vel = None            # for acceleration tracking
@@ -110,12 +111,16 @@ class SimLink:
     def velocity(self, point=None):
         """(linear velocity of `point` (world; default the link origin), angular velocity),
         both in the world frame."""
+        lin, ang = self.velocity_tuples(point)
+        return np.array(lin), np.array(ang)
+
+    def velocity_tuples(self, point=None):
+        """velocity() as float tuples."""
         if self.body is None:
-            return np.zeros(3), np.zeros(3)
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
         if point is None:
-            point = self.pose().p
-        return (np.array(self.body.getPointVel(tuple(point))),
-                np.array(self.body.getAngularVel()))
+            point = self.pose_tuples()[0]
+        return self.body.getPointVel(tuple(point)), self.body.getAngularVel()
 
     def wake(self):
         if self.body is not None:
@@ -350,13 +355,32 @@ class SimModel:
         model, so a freshly spawned model reports its spawn pose)."""
         if self.canonical is None:
             return self.initial_pose
-        return self.canonical.pose() * self.canonical.desc.pose.inverse()
+        return Pose.unit(*self.pose_tuples())
+
+    def pose_tuples(self):
+        """pose() as float tuples (p, q), computed without numpy (/gazebo/model_states goes out
+        every step)."""
+        c = self.canonical
+        if c is None:
+            return self.initial_pose.tuples()
+        (x, y, z), q = c.pose_tuples()
+        ip, iq = c._in_model_inv
+        ox, oy, oz = qrotate(q, ip)
+        return (x + ox, y + oy, z + oz), qnormalize(qmul(q, iq))
 
     def twist(self):
         """(linear, angular) world velocity of the model frame origin."""
-        if self.canonical is None or self.canonical.body is None:
-            return np.zeros(3), np.zeros(3)
-        return self.canonical.velocity(self.pose().p)
+        lin, ang = self.twist_tuples()
+        return np.array(lin), np.array(ang)
+
+    def twist_tuples(self, origin=None):
+        """twist() as float tuples; `origin`: the model frame's position if already known."""
+        c = self.canonical
+        if c is None or c.body is None:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        if origin is None:
+            origin = self.pose_tuples()[0]
+        return c.body.getPointVel(origin), c.body.getAngularVel()
 
     def bodies(self):
         return [l.body for l in self.links.values() if l.body is not None]

@@ -3,6 +3,8 @@
 Engine and description code work with ode_sim.description.transforms.Pose (p: xyz, q: xyzw as
 ROS orders it), numpy 3-vectors and plain floats; everything that builds or reads a message
 field goes through the functions here."""
+import struct
+
 import numpy as np
 from geometry_msgs.msg import Pose as PoseMsg, Twist, Vector3
 
@@ -252,14 +254,35 @@ def color_msg(rgba_values):
     return ColorRGBA(*[float(v) for v in rgba_values])
 
 
-def entity_states_msg(msg, entries):
-    """Fill a gazebo_msgs/ModelStates or LinkStates from (name, Pose, (linear, angular))
-    entries, world frame. Returns the message."""
-    for name, pose, (lin, ang) in entries:
-        msg.name.append(name)
-        msg.pose.append(pose_msg(pose))
-        msg.twist.append(twist_msg(lin, ang))
-    return msg
+class EntityStatesFrame:
+    """gazebo_msgs/ModelStates or LinkStates written straight into their wire bytes from float
+    tuples: /gazebo/model_states goes out every physics step while someone listens, and building
+    one geometry_msgs/Pose and Twist object per entity per step cost more than the physics.
+    message(names, states) returns a message of the class whose serialize() writes those bytes
+    (its fields stay empty: it is only for a publisher); the names' part is kept while the
+    names stay the same."""
+
+    def __init__(self, msg_class):
+        self._cls = type('Raw' + msg_class.__name__, (msg_class,), {
+            '__slots__': ('raw',), 'serialize': lambda self, buff: buff.write(self.raw)})
+        self._names = None
+
+    def message(self, names, states):
+        """names: a tuple of str; states: per name ((x, y, z), (qx, qy, qz, qw), (vx, vy, vz),
+        (wx, wy, wz)) in the world frame."""
+        if names != self._names:
+            count = struct.pack('<I', len(names))
+            self._head = count + b''.join(struct.pack('<I', len(b)) + b
+                                          for b in (n.encode() for n in names))
+            self._poses = struct.Struct('<I%dd' % (7 * len(names)))
+            self._twists = struct.Struct('<I%dd' % (6 * len(names)))
+            self._names = names
+        n = len(names)
+        poses = [v for p, q, _l, _a in states for v in p + q]
+        twists = [v for _p, _q, lin, ang in states for v in lin + ang]
+        msg = self._cls()
+        msg.raw = self._head + self._poses.pack(n, *poses) + self._twists.pack(n, *twists)
+        return msg
 
 
 def performance_metrics_msg(t, real_time_factor):

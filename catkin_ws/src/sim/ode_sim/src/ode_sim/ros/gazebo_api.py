@@ -32,13 +32,14 @@ from visualization_msgs.msg import MarkerArray
 
 from ode_sim.description.model import ModelError
 from ode_sim.description.transforms import Pose
-from ode_sim.ros.convert import (entity_states_msg, fill_vector, ode_physics_msg,
+from ode_sim.ros.convert import (EntityStatesFrame, fill_vector, ode_physics_msg,
                                  performance_metrics_msg, pose_from_msg, vector)
 from ode_sim.ros.gazebo_forces import ForceServices
 from ode_sim.ros.gazebo_lights import LightServices, light_attenuations
 from ode_sim.ros.gazebo_state import SPAWN_REFERENCE_NOT_FOUND, StateServices, failure
 from ode_sim.ros.markers import SceneMarkers
 from ode_sim.ros.plugins.base import NO_WORK
+from ode_sim.ros.plugins.rosio import FanoutPublisher
 
 WORLD_FRAMES = ('', 'world', 'map', '/map')
 
@@ -104,8 +105,11 @@ class GazeboApi(StateServices, ForceServices, LightServices):
             S(n + '/reset_simulation', Empty, self.reset_simulation),
             S(n + '/reset_world', Empty, self.reset_world),
         ]
-        self.link_states = rospy.Publisher(n + '/link_states', gm.LinkStates, queue_size=10)
-        self.model_states = rospy.Publisher(n + '/model_states', gm.ModelStates, queue_size=10)
+        # every step while someone listens: sent by the compiled core's thread, as /clock
+        self.link_states = FanoutPublisher(n + '/link_states', gm.LinkStates, queue_size=10)
+        self.model_states = FanoutPublisher(n + '/model_states', gm.ModelStates, queue_size=10)
+        self._link_frame = EntityStatesFrame(gm.LinkStates)
+        self._model_frame = EntityStatesFrame(gm.ModelStates)
         self.metrics = rospy.Publisher(n + '/performance_metrics', gm.PerformanceMetrics,
                                        queue_size=10)
         self._metrics_last = None       # (wall, sim) of the last metrics message
@@ -211,13 +215,21 @@ class GazeboApi(StateServices, ForceServices, LightServices):
         self.metrics.publish(msg)
 
     def _model_states(self):
-        return entity_states_msg(gm.ModelStates(), ((name, m.pose(), m.twist())
-                                                    for name, m in self.physics.models.items()))
+        names, states = [], []
+        for name, m in self.physics.models.items():
+            p, q = m.pose_tuples()
+            names.append(name)
+            states.append((p, q) + m.twist_tuples(p))
+        return self._model_frame.message(tuple(names), states)
 
     def _link_states(self):
-        return entity_states_msg(gm.LinkStates(), (
-            ('%s::%s' % (mname, lname), link.pose(), link.velocity())
-            for mname, m in self.physics.models.items() for lname, link in m.links.items()))
+        names, states = [], []
+        for mname, m in self.physics.models.items():
+            for lname, link in m.links.items():
+                p, q = link.pose_tuples()
+                names.append('%s::%s' % (mname, lname))
+                states.append((p, q) + link.velocity_tuples(p))
+        return self._link_frame.message(tuple(names), states)
 
     def publish_markers(self):
         """(Under the node's lock.) Scene markers of every model not spawned from URDF (robots

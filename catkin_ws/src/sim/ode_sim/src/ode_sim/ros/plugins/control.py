@@ -21,21 +21,21 @@ the contract documented in doc/ros_control_bridge.md:
   joint_commands; after `NS/ode_sim/lockstep_timeout` (1.0 s) it warns once and steps on until
   commands flow again.
 
-- the controller manager: when ROS is up the plugin starts gazebo_ros_control's
-  `gazebo_ros_control_node` in NS as a child process (the C++ DefaultRobotHWSim +
-  controller_manager, the controller side of the contract), as gzserver loads
-  gazebo_ros_control; it is stopped with the plugin (model deleted, simulator exits) and
-  exits by itself if the simulator dies. `<controllerNode>false</controllerNode>` (an ode_sim
-  extension) starts none: a RobotHW of one's own speaks the topics.
-  `<controllerNode>inprocess</controllerNode>` runs the same controller manager inside this
-  process (gazebo_ros_control's libgazebo_ros_control_inprocess.so through ctypes): every
+- the controller manager: when ROS is up the plugin runs gazebo_ros_control's controller
+  manager (the C++ DefaultRobotHWSim + controller_manager) inside this process, as gzserver
+  loads gazebo_ros_control (`<controllerNode>inprocess</controllerNode>`, an ode_sim extension,
+  the default): gazebo_ros_control's libgazebo_ros_control_inprocess.so through ctypes; every
   control period the plugin hands it the joint states and takes the commands back directly,
-  no topics and no lockstep waiting (as gazebo_ros_control in gzserver; much faster).
+  no topics and no lockstep waiting. `<controllerNode>true</controllerNode>` starts the same
+  manager as `gazebo_ros_control_node` in NS, a child process speaking the contract's topics;
+  it is stopped with the plugin (model deleted, simulator exits) and exits by itself if the
+  simulator dies. `<controllerNode>false</controllerNode>` starts none: a RobotHW of one's own
+  speaks the topics.
 
 Tags as gazebo_ros_control (noetic): robotNamespace (model name), robotParam
 (robot_description; the transmissions come with the model here), robotSimType (only
 gazebo_ros_control/DefaultRobotHWSim), controlPeriod (physics step), eStopTopic (none);
-ode_sim's controllerNode (true).
+ode_sim's controllerNode (inprocess).
 """
 import math
 import os
@@ -84,7 +84,7 @@ class GazeboRosControl(Plugin):
         else:
             self.control_period = dt
         self.estop_topic = self.param('eStopTopic', '', warn=False).strip()
-        mode = self.param('controllerNode', 'true', warn=False).strip().lower()
+        mode = self.param('controllerNode', 'inprocess', warn=False).strip().lower()
         if mode not in NODE_MODES:
             raise self.error("<controllerNode> must be true (a child process), inprocess or false, "
                              "got %r" % mode)
