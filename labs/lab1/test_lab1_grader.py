@@ -49,7 +49,7 @@ def runs(tmp_path_factory):
     root = tmp_path_factory.mktemp('lab1')
     (root / 'times_only.yaml').write_text(TIMES_ONLY)
     cases = dict(CASES, v5_table_times_only=('123455', {'args': ['--variants', str(root / 'times_only.yaml')]}))
-    return run_cases('lab1', cases, str(root / 'runs'), workers=3)
+    return run_cases('lab1', cases, str(root / 'runs'), workers=4)
 
 
 @pytest.mark.parametrize('name', ['ref_minus_node3', 'ref_div_node1'])

@@ -101,3 +101,73 @@ def test_lab1_digit_4_stays_one_reading():
     wrong = lab1.evaluate(lab1_obs([7.0] * 12))[2]     # digit 4 prints "*" only: "+" fails
     assert not wrong.passed and 'result 7 but node2 * node3 = 2 * 5 = 10 (' in wrong.reason['en']
     assert 'reads two ways' not in wrong.reason['en']
+
+
+class _Graph:
+    """GraphWatcher's surface the observer's rounds use, with no master behind it."""
+
+    def __init__(self):
+        self.results = []
+        self.nodes = set()
+        self.pubs = {}
+
+    def poll(self):
+        return True
+
+    def listen(self, topic):
+        pass
+
+    def series(self, topic):
+        return self.results if topic == '/result_123456' else []
+
+
+class _Child:
+    def __init__(self, rc=None):
+        self._rc = rc
+
+    def rc(self):
+        return self._rc
+
+
+def test_observer_stops_waiting_once_a_node_exited_without_a_result():
+    """A node that exited is not restarted: AFTER_EXIT s later with no result the observation
+    ends instead of waiting out STARTUP_LIMIT; a result that came keeps the normal course."""
+    from grading.lab1.observer import Lab1Observer
+    obs = Lab1Observer('123456', {}, '/nonexistent')
+    obs.graph = _Graph()
+    obs.children = {'node1': _Child(), 'node2': _Child(rc=1), 'node3': _Child()}
+    assert obs._step(1.0, 0.0, 'node3') is None
+    assert obs._step(1.0 + lab1.AFTER_EXIT, 0.0, 'node3') is None
+    assert obs._step(1.5 + lab1.AFTER_EXIT, 0.0, 'node3') == 'no result'
+    # the same exit after the first result: observed for OBSERVE s as before
+    obs = Lab1Observer('123456', {}, '/nonexistent')
+    obs.graph = _Graph()
+    obs.graph.results = [(0.5, 1.0)]
+    obs.children = {'node1': _Child(), 'node2': _Child(rc=1), 'node3': _Child()}
+    assert obs._step(1.0, 0.0, 'node3') is None
+    assert obs._step(1.0 + lab1.AFTER_EXIT + 1, 0.0, 'node3') == 'observed'
+    assert lab1.AFTER_EXIT + 1 >= lab1.OBSERVE
+
+
+def test_observer_stops_waiting_when_nobody_advertises_the_result():
+    """Nodes up, unchanged for SILENT s, and no result topic advertised (the starter's nodes):
+    the observation ends; advertised but not yet published: it waits on (STARTUP_LIMIT)."""
+    from grading.lab1.observer import Lab1Observer
+    obs = Lab1Observer('123456', {}, '/nonexistent')
+    obs.graph = _Graph()
+    obs.children = {'node1': _Child(), 'node2': _Child(), 'node3': _Child()}
+    obs.graph.nodes = {'/node1', '/node2'}
+    obs.graph.pubs = {'/node1': {'/number1', '/rosout'}, '/node2': {'/number2'}}
+    assert obs._step(1.0, 0.0, 'node3') is None
+    obs.graph.nodes.add('/node3')               # a node more: the wait starts again
+    assert obs._step(1.0 + lab1.SILENT, 0.0, 'node3') is None
+    assert obs._step(1.0 + 2 * lab1.SILENT, 0.0, 'node3') is None
+    assert obs._step(2.0 + 2 * lab1.SILENT, 0.0, 'node3') == 'no result'
+    obs = Lab1Observer('123456', {}, '/nonexistent')
+    obs.graph = _Graph()
+    obs.children = {'node1': _Child(), 'node2': _Child(), 'node3': _Child()}
+    obs.graph.nodes = {'/node1', '/node2', '/node3'}
+    obs.graph.pubs = {'/node3': {'/result_123456'}}
+    assert obs._step(1.0, 0.0, 'node3') is None
+    assert obs._step(lab1.STARTUP_LIMIT - 1, 0.0, 'node3') is None
+    assert obs._step(lab1.STARTUP_LIMIT + 1, 0.0, 'node3') == 'no result'

@@ -28,7 +28,7 @@ CASES = {
 
 @pytest.fixture(scope='module')
 def runs(tmp_path_factory):
-    return run_cases('lab2', CASES, str(tmp_path_factory.mktemp('lab2')), workers=2)
+    return run_cases('lab2', CASES, str(tmp_path_factory.mktemp('lab2')), workers=4)
 
 
 @pytest.mark.parametrize('name', ['ref_three_points', 'ref_row_9_printed'])

@@ -21,7 +21,7 @@ CASES = {
 
 @pytest.fixture(scope='module')
 def runs(tmp_path_factory):
-    return run_cases('lab3', CASES, str(tmp_path_factory.mktemp('lab3')), workers=3)
+    return run_cases('lab3', CASES, str(tmp_path_factory.mktemp('lab3')), workers=4)
 
 
 @pytest.mark.parametrize('name', ['ref_v1', 'ref_v4'])

@@ -112,12 +112,12 @@ CASES_C = {
 
 @pytest.fixture(scope='module')
 def runs_a(tmp_path_factory):
-    return run_cases('lab4', CASES_A, str(tmp_path_factory.mktemp('lab4a')), workers=2)
+    return run_cases('lab4', CASES_A, str(tmp_path_factory.mktemp('lab4a')), workers=4)
 
 
 @pytest.fixture(scope='module')
 def runs_b(tmp_path_factory):
-    return run_cases('lab4', CASES_B, str(tmp_path_factory.mktemp('lab4b')), workers=2)
+    return run_cases('lab4', CASES_B, str(tmp_path_factory.mktemp('lab4b')), workers=3)
 
 
 @pytest.mark.parametrize('name', ['ref_v1', 'ref_v0'])

@@ -17,6 +17,8 @@ class Lab1Observer:
         self.graph = GraphWatcher()
         self.children = {}
         self.first_result = None
+        self.first_exit = None      # when a node was first seen to have exited
+        self.nodes_seen = (frozenset(), None)   # the graph's nodes, and since when
 
     def _start(self):
         """Start every executable node script; returns the scripts that are not executable."""
@@ -33,17 +35,34 @@ class Lab1Observer:
         self.graph.poll()
         for topic, _node in self._student_topics():
             self.graph.listen(topic)
-        res = [t for t in rules.result_topics(self.isu, comp) if self.graph.series(t)]
+        wanted = rules.result_topics(self.isu, comp)
+        res = [t for t in wanted if self.graph.series(t)]
         if res and self.first_result is None:
             self.first_result = now
         if self.first_result is not None and now - self.first_result >= rules.OBSERVE:
             return 'observed'
         if self.first_result is None and now - start > rules.STARTUP_LIMIT:
             return 'no result'
+        if self.first_exit is None and any(c.rc() is not None for c in self.children.values()):
+            self.first_exit = now
+        if self.first_result is None and self.first_exit is not None and now - self.first_exit > rules.AFTER_EXIT:
+            return 'no result'
+        if self.first_result is None and self._silent(now, wanted):
+            return 'no result'
         if self.children and all(c.rc() is not None for c in self.children.values()):
             time.sleep(0.5)
             return 'exited'
         return None
+
+    def _silent(self, now, wanted):
+        """True once the same nodes have been up for rules.SILENT s and none advertises a
+        result topic."""
+        nodes = frozenset(self.graph.nodes)
+        if nodes != self.nodes_seen[0]:
+            self.nodes_seen = (nodes, now)
+            return False
+        advertised = any(t in wanted for t, _n in self._student_topics())
+        return bool(nodes) and not advertised and now - self.nodes_seen[1] > rules.SILENT
 
     def run(self):
         start = time.monotonic()

@@ -13,6 +13,10 @@ from grading.lab1.variants import NODES, operations, roles
 STARTUP_LIMIT = 60.0   # s from start until every node is up and the first result arrives (generous: a
 # loaded machine starts three rospy nodes slowly; a working solution needs ~3 s)
 OBSERVE = 8.0          # s of observation after the first result
+SILENT = 20.0          # s with the same nodes up and none advertising the result topic: a solution
+# advertises it as it starts, so the rest of STARTUP_LIMIT is not waited out
+AFTER_EXIT = 10.0      # s without a result after a node exited: it will not come (nothing restarts
+# the node), so the rest of STARTUP_LIMIT is not waited out
 MIN_RESULTS = 3        # result messages needed in the observation ("repeatedly")
 MAX_GAP = 5.0          # s, largest allowed pause between two results
 WINDOW = 10.0          # s before a result: operands the computing node may still have held

@@ -35,6 +35,8 @@ class Lab3Observer:
         self.argv_seen = {}
         self.rviz_up = False
         self.rviz_pid = None
+        self._seen = None               # (nodes, frames) at the last look
+        self._changed = None            # when they last changed
 
     def _step(self, cmd, name):
         """(rc or None on timeout, combined output) of a short command."""
@@ -130,6 +132,19 @@ class Lab3Observer:
             return 'exited'
         if now - launch.start > self.launch_limit:
             return 'limit'
+        return self._settled(now, nodes, frames, res)
+
+    def _settled(self, now, nodes, frames, res):
+        """'settled' once RViz is up and the description set, and neither the nodes nor the
+        TF frames have changed for rules.SETTLED s: a missing piece (a node that is not in the
+        launch file, a link nobody publishes) will not come, so there is no need to wait out
+        the launch limit; None otherwise."""
+        seen = (frozenset(nodes), frozenset(frames))
+        if seen != self._seen:
+            self._seen, self._changed = seen, now
+            return None
+        if self.rviz_up and res.get('robot_description') is not None and now - self._changed > rules.SETTLED:
+            return 'settled'
         return None
 
     def _rviz_still_up(self, launch, res):

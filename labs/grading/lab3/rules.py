@@ -15,6 +15,9 @@ SIZE_TOL = 5.0          # mm, per dimension of the body box
 LAUNCH_LIMIT = 120.0    # s from roslaunch until every piece of criterion 7 is seen (RViz on a loaded machine)
 STEP_TIMEOUT = 60.0     # s, xacro and check_urdf each
 RVIZ_SETTLE = 3.0       # s RViz must keep running after everything was seen
+# s with RViz up, the description set and neither the nodes nor the TF frames changing: what is
+# still missing will not come (no need to wait out LAUNCH_LIMIT)
+SETTLED = 20.0
 
 
 def _both(ru, en):
