@@ -136,7 +136,7 @@ def drove_and_turned():
             and any(p[4] == 0.0 and p[3] == 2.0 for p in ps))
 
 deadline = time.time() + 120   # a bound on a broken run, not a speed requirement
-while ((len(positions) < n or (motion and not drove_and_turned()))
+while ((len(positions) < n or len(poses) < n or (motion and not drove_and_turned()))
        and time.time() < deadline and not rospy.is_shutdown()):
     time.sleep(0.05)
 seen = set((p[0], p[1]) for p in poses)
