@@ -111,16 +111,8 @@ class SimLink:
     def velocity(self, point=None):
         """(linear velocity of `point` (world; default the link origin), angular velocity),
         both in the world frame."""
-        lin, ang = self.velocity_tuples(point)
+        lin, ang = self.point_velocity(self.pose_tuples()[0] if point is None else point)
         return np.array(lin), np.array(ang)
-
-    def velocity_tuples(self, point=None):
-        """velocity() as float tuples."""
-        if self.body is None:
-            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-        if point is None:
-            point = self.pose_tuples()[0]
-        return self.body.getPointVel(tuple(point)), self.body.getAngularVel()
 
     def wake(self):
         if self.body is not None:
@@ -375,12 +367,9 @@ class SimModel:
 
     def twist_tuples(self, origin=None):
         """twist() as float tuples; `origin`: the model frame's position if already known."""
-        c = self.canonical
-        if c is None or c.body is None:
+        if self.canonical is None:
             return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-        if origin is None:
-            origin = self.pose_tuples()[0]
-        return c.body.getPointVel(origin), c.body.getAngularVel()
+        return self.canonical.point_velocity(self.pose_tuples()[0] if origin is None else origin)
 
     def bodies(self):
         return [l.body for l in self.links.values() if l.body is not None]

@@ -228,7 +228,7 @@ class GazeboApi(StateServices, ForceServices, LightServices):
             for lname, link in m.links.items():
                 p, q = link.pose_tuples()
                 names.append('%s::%s' % (mname, lname))
-                states.append((p, q) + link.velocity_tuples(p))
+                states.append((p, q) + link.point_velocity(p))
         return self._link_frame.message(tuple(names), states)
 
     def publish_markers(self):
