@@ -63,8 +63,10 @@ bool JointStateController::init(hardware_interface::JointStateInterface* hw, ros
     }
   }
 
+  // queue 100 (the original: 4): at many times real time a busy machine's roscpp writes a burst
+  // of joint states late, and 4 per subscriber dropped 1-2 % of them (bench/sim_rtf --launch)
   realtime_pub_ =
-      std::make_shared<realtime_tools::RealtimePublisher<sensor_msgs::JointState>>(root_nh, "joint_states", 4);
+      std::make_shared<realtime_tools::RealtimePublisher<sensor_msgs::JointState>>(root_nh, "joint_states", 100);
   // msg_ is not shared with the publishing thread until the first unlockAndPublish()
   sensor_msgs::JointState& msg = realtime_pub_->msg_;
   for (const std::string& name : joint_names)

@@ -1,5 +1,5 @@
-// rostest node: RealtimePublisher delivers what the realtime side hands over, and trylock()
-// refuses while the previous message is still waiting to be published.
+// rostest node: RealtimePublisher delivers what the realtime side hands over, in order, and
+// trylock() succeeds while fewer than queue_size handed-over messages wait to be published.
 #include <gtest/gtest.h>
 
 #include <ros/ros.h>
@@ -53,6 +53,47 @@ TEST(RealtimePublisher, PublishesHandedOverMessages)
   for (int i = 0; i < 5; ++i)
     EXPECT_EQ(i + 1.0, received[i]);
   EXPECT_TRUE(pub.is_running());
+}
+
+TEST(RealtimePublisher, QueueSizeMessagesMayWaitForThePublishingThread)
+{
+  ros::NodeHandle nh("~");
+  std::vector<double> received;
+  std::mutex mutex;
+  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>("burst", 100,
+                                                        [&](const std_msgs::Float64::ConstPtr& msg)
+                                                        {
+                                                          std::lock_guard<std::mutex> guard(mutex);
+                                                          received.push_back(msg->data);
+                                                        });
+  realtime_tools::RealtimePublisher<std_msgs::Float64> pub(nh, "burst", 20);
+  ros::AsyncSpinner spinner(1);
+  spinner.start();
+  for (int i = 0; i < 3000 && sub.getNumPublishers() == 0; ++i)
+    ros::WallDuration(0.01).sleep();
+  ASSERT_EQ(1u, sub.getNumPublishers()) << "subscriber never connected to the realtime publisher";
+
+  // a burst of 20 hand-overs, none waiting for the thread: each trylock() succeeds, however far
+  // the publishing thread has got
+  for (int value = 1; value <= 20; ++value)
+  {
+    ASSERT_TRUE(pub.trylock()) << "trylock() refused hand-over " << value << " of a queue of 20";
+    pub.msg_.data = value;
+    pub.unlockAndPublish();
+  }
+  for (int i = 0; i < 3000; ++i)
+  {
+    {
+      std::lock_guard<std::mutex> guard(mutex);
+      if (received.size() == 20u)
+        break;
+    }
+    ros::WallDuration(0.01).sleep();
+  }
+  std::lock_guard<std::mutex> guard(mutex);
+  ASSERT_EQ(20u, received.size()) << "not every handed-over message arrived";
+  for (int i = 0; i < 20; ++i)
+    EXPECT_EQ(i + 1.0, received[i]);
 }
 
 int main(int argc, char** argv)
