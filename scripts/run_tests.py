@@ -210,7 +210,7 @@ def rostest_lane(runner, lane, env, args):
 
 
 def default_jobs():
-    return int(os.environ.get('COURSE_TEST_JOBS') or 3)
+    return int(os.environ.get('COURSE_TEST_JOBS') or 2)
 
 
 def arguments():
@@ -219,7 +219,7 @@ def arguments():
     ap.add_argument('-k', dest='keyword', help='pytest -k expression; rostests: substring of file name')
     ap.add_argument('-j', '--jobs', type=int, default=default_jobs(),
                     help='pytest workers (pytest-xdist); with more than one, the gtests and rostests '
-                         'run beside them in a lane of their own (default: $COURSE_TEST_JOBS or 3; '
+                         'run beside them in a lane of their own (default: $COURSE_TEST_JOBS or 2; '
                          '1 = everything one after the other)')
     ap.add_argument('--no-rostest', action='store_true')
     ap.add_argument('--no-pytest', action='store_true')
