@@ -7,28 +7,59 @@
 
 #include <realtime_tools/realtime_publisher.h>
 
+/// A subscriber of ~topic collecting what arrives (connected() waits for its publisher).
+struct Receiver
+{
+  std::vector<double> received;
+  std::mutex mutex;
+  ros::Subscriber sub;
+
+  Receiver(ros::NodeHandle& nh, const std::string& topic)
+  {
+    sub = nh.subscribe<std_msgs::Float64>(topic, 100,
+                                          [this](const std_msgs::Float64::ConstPtr& msg)
+                                          {
+                                            std::lock_guard<std::mutex> guard(mutex);
+                                            received.push_back(msg->data);
+                                          });
+  }
+
+  bool connected()
+  {
+    for (int i = 0; i < 3000 && sub.getNumPublishers() == 0; ++i)
+      ros::WallDuration(0.01).sleep();
+    return sub.getNumPublishers() == 1u;
+  }
+
+  /// Waits (up to 30 s) for n messages; returns what arrived.
+  std::vector<double> await(std::size_t n)
+  {
+    for (int i = 0; i < 3000; ++i)
+    {
+      {
+        std::lock_guard<std::mutex> guard(mutex);
+        if (received.size() >= n)
+          break;
+      }
+      ros::WallDuration(0.01).sleep();
+    }
+    std::lock_guard<std::mutex> guard(mutex);
+    return received;
+  }
+};
+
 TEST(RealtimePublisher, PublishesHandedOverMessages)
 {
   ros::NodeHandle nh("~");
-  std::vector<double> received;
-  std::mutex mutex;
-  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>("out", 10,
-                                                        [&](const std_msgs::Float64::ConstPtr& msg)
-                                                        {
-                                                          std::lock_guard<std::mutex> guard(mutex);
-                                                          received.push_back(msg->data);
-                                                        });
+  Receiver receiver(nh, "out");
   realtime_tools::RealtimePublisher<std_msgs::Float64> pub(nh, "out", 10);
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  for (int i = 0; i < 3000 && sub.getNumPublishers() == 0; ++i)
-    ros::WallDuration(0.01).sleep();
-  ASSERT_EQ(1u, sub.getNumPublishers()) << "subscriber never connected to the realtime publisher";
+  ASSERT_TRUE(receiver.connected()) << "subscriber never connected to the realtime publisher";
 
-  int handed_over = 0;
   for (int value = 1; value <= 5; ++value)
   {
-    // wait until the previous message has been taken by the publishing thread
+    // wait until the publishing thread takes hand-overs again
     int tries = 0;
     while (!pub.trylock())
     {
@@ -37,18 +68,8 @@ TEST(RealtimePublisher, PublishesHandedOverMessages)
     }
     pub.msg_.data = value;
     pub.unlockAndPublish();
-    ++handed_over;
   }
-  for (int i = 0; i < 3000; ++i)
-  {
-    {
-      std::lock_guard<std::mutex> guard(mutex);
-      if (received.size() == 5u)
-        break;
-    }
-    ros::WallDuration(0.01).sleep();
-  }
-  std::lock_guard<std::mutex> guard(mutex);
+  const std::vector<double> received = receiver.await(5);
   ASSERT_EQ(5u, received.size()) << "not every handed-over message arrived";
   for (int i = 0; i < 5; ++i)
     EXPECT_EQ(i + 1.0, received[i]);
@@ -58,20 +79,11 @@ TEST(RealtimePublisher, PublishesHandedOverMessages)
 TEST(RealtimePublisher, QueueSizeMessagesMayWaitForThePublishingThread)
 {
   ros::NodeHandle nh("~");
-  std::vector<double> received;
-  std::mutex mutex;
-  ros::Subscriber sub = nh.subscribe<std_msgs::Float64>("burst", 100,
-                                                        [&](const std_msgs::Float64::ConstPtr& msg)
-                                                        {
-                                                          std::lock_guard<std::mutex> guard(mutex);
-                                                          received.push_back(msg->data);
-                                                        });
+  Receiver receiver(nh, "burst");
   realtime_tools::RealtimePublisher<std_msgs::Float64> pub(nh, "burst", 20);
   ros::AsyncSpinner spinner(1);
   spinner.start();
-  for (int i = 0; i < 3000 && sub.getNumPublishers() == 0; ++i)
-    ros::WallDuration(0.01).sleep();
-  ASSERT_EQ(1u, sub.getNumPublishers()) << "subscriber never connected to the realtime publisher";
+  ASSERT_TRUE(receiver.connected()) << "subscriber never connected to the realtime publisher";
 
   // a burst of 20 hand-overs, none waiting for the thread: each trylock() succeeds, however far
   // the publishing thread has got
@@ -81,16 +93,7 @@ TEST(RealtimePublisher, QueueSizeMessagesMayWaitForThePublishingThread)
     pub.msg_.data = value;
     pub.unlockAndPublish();
   }
-  for (int i = 0; i < 3000; ++i)
-  {
-    {
-      std::lock_guard<std::mutex> guard(mutex);
-      if (received.size() == 20u)
-        break;
-    }
-    ros::WallDuration(0.01).sleep();
-  }
-  std::lock_guard<std::mutex> guard(mutex);
+  const std::vector<double> received = receiver.await(20);
   ASSERT_EQ(20u, received.size()) << "not every handed-over message arrived";
   for (int i = 0; i < 20; ++i)
     EXPECT_EQ(i + 1.0, received[i]);
