@@ -1,6 +1,6 @@
 # Entry points. `make test` and `make demo` run the (idempotent, fast when done) setup first.
 SHELL := /bin/bash
-.PHONY: setup build test test-full test-stress test-class test-docker demo demo-lab2 bench clean
+.PHONY: setup build test test-full test-stress test-class test-docker test-cold demo demo-lab2 bench clean
 REPEAT ?= 1
 
 setup:
@@ -29,6 +29,11 @@ test-class: setup
 RELEASE ?= bookworm
 test-docker:
 	bash scripts/test_docker.sh $(RELEASE)
+
+# CI's run on a fresh machine, timed: a fresh clone of HEAD runs .ci/run (make test) in a
+# container of the bare Debian base image, with no package, download or compiler cache
+test-cold:
+	COURSE_DOCKER_COLD=1 bash scripts/test_docker.sh $(RELEASE)
 
 # the main demo: the space scanner maps the office, then navigates on its map;
 # make demo web:=true also serves the course's web view (http://localhost:8080) for the demo

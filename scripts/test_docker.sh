@@ -13,8 +13,12 @@
 #   5. runs `make test` inside a container of the image and prints its "N passed, N failed".
 # Options (environment): COURSE_DOCKER_SUITE=0 skips step 5 (prints that it did);
 # COURSE_DOCKER_REBUILD=0 uses an existing ros-course:RELEASE instead of building (step 3);
+# COURSE_DOCKER_COLD=1 replaces steps 3-5 by CI's run on a fresh machine (make test-cold): a
+# container of the bare base image clones the repository's HEAD and runs .ci/run (make test:
+# setup.sh, then the suite) with nothing cached - Debian packages downloaded, PyPI and npm
+# packages fetched, every C++ file compiled by an empty ccache - and prints the time it took;
 # COURSE_CA_BUNDLE (default: /etc/ssl/certs/ca-certificates.crt when present).
-# Figures and logs: build/test-docker/RELEASE/ (screenshot.png, build.log, suite.log).
+# Figures and logs: build/test-docker/RELEASE/ (screenshot.png, build.log, suite.log, cold.log).
 # shellcheck disable=SC2317  # cleanup and the check functions are called through trap and check
 set -uo pipefail
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -66,6 +70,15 @@ fi
 CA="${COURSE_CA_BUNDLE:-}"
 [ -z "$CA" ] && [ -r /etc/ssl/certs/ca-certificates.crt ] && CA=/etc/ssl/certs/ca-certificates.crt
 export COURSE_CA_BUNDLE="$CA"
+ca_args=()      # a container's PyPI and npm downloads trust the host's CA bundle
+[ -n "$CA" ] && ca_args=(--volume "$CA:/run/host-ca.pem:ro" --env PIP_CERT=/run/host-ca.pem
+                         --env SSL_CERT_FILE=/run/host-ca.pem --env REQUESTS_CA_BUNDLE=/run/host-ca.pem
+                         --env NODE_EXTRA_CA_CERTS=/run/host-ca.pem)
+# the suite tests the lab graders' bubblewrap sandbox, which (as root) makes mount, PID and
+# network namespaces and tmpfs mounts as on a host: SYS_ADMIN/NET_ADMIN, no seccomp filter
+# (--privileged is refused on machines that do not grant every capability)
+suite_args=(--cap-add SYS_ADMIN --cap-add NET_ADMIN --security-opt seccomp=unconfined
+            --security-opt apparmor=unconfined --shm-size=1g "${ca_args[@]}")
 
 # ---- 2. base image --------------------------------------------------------------------------
 BASE_S="cached"
@@ -82,6 +95,35 @@ if ! docker image inspect "debian:$RELEASE" >/dev/null 2>&1; then
     BASE_S="$(( $(now) - t0 )) s"
 fi
 log "base image debian:$RELEASE: $BASE_S"
+
+# ---- cold: CI on a fresh machine (COURSE_DOCKER_COLD=1, make test-cold) ---------------------
+suite_line() {  # suite_line LOG: the log's closing "N passed, N failed" line
+    grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$1" | tail -n 1
+}
+if [ "${COURSE_DOCKER_COLD:-0}" = 1 ]; then
+    CNAME="ros-course-cold-$RELEASE-$$"
+    CONTAINERS+=("$CNAME")
+    log "make test from a cold cache: a fresh clone of HEAD in a container of debian:$RELEASE (log: $OUT/cold.log)"
+    t0=$(now)
+    # git, make and the CA certificates are what a CI machine has before it clones
+    docker run --rm --name "$CNAME" "${suite_args[@]}" --volume "$REPO:/src:ro" "debian:$RELEASE" \
+        bash -c 'set -e
+                 apt-get update -qq && apt-get install -y -qq --no-install-recommends git make ca-certificates >/dev/null
+                 git clone -q --no-hardlinks /src /course && cd /course && git log --oneline -1
+                 s=$(date +%s); CI=true bash .ci/run; echo "[cold] make test took $(( $(date +%s) - s )) s"' \
+        </dev/null >"$OUT/cold.log" 2>&1
+    COLD_RC=$?
+    COLD_S=$(( $(now) - t0 ))
+    LINE=$(suite_line "$OUT/cold.log")
+    [ -n "$LINE" ] || { LINE="0 passed, 1 failed"; tail -n 30 "$OUT/cold.log"; }
+    grep -E '^(FAILED|ERROR)' "$OUT/cold.log" | head -n 40
+    MAKE_S=$(sed -n 's/^\[cold\] make test took \([0-9]*\) s$/\1/p' "$OUT/cold.log")
+    SUITE_S=$(sed -n 's/^=== summary (\([0-9]*\) s.*/\1/p' "$OUT/cold.log")
+    log "figures: make test from a cold cache ${MAKE_S:-?} s (setup $(( ${MAKE_S:-0} - ${SUITE_S:-0} )) s, suite ${SUITE_S:-?} s), container in all ${COLD_S} s: $LINE"
+    echo "$LINE"
+    [ "$COLD_RC" = 0 ] && ! grep -qE ' [1-9][0-9]* failed' <<<"$LINE"
+    exit $?
+fi
 
 # ---- 3. the course image, built as a student builds it --------------------------------------
 IMAGE="ros-course:$RELEASE"
@@ -188,27 +230,18 @@ log "course scripts: $CHECK_PASS passed, $CHECK_FAIL failed"
 # ---- 5. the test suite inside a container -----------------------------------------------------
 SUITE_LINE="suite not run (COURSE_DOCKER_SUITE=0)"; SUITE_S=0; SUITE_RC=0
 if [ "${COURSE_DOCKER_SUITE:-1}" != 0 ]; then
-    ca_args=()
-    [ -n "$CA" ] && ca_args=(--volume "$CA:/run/host-ca.pem:ro" --env PIP_CERT=/run/host-ca.pem
-                             --env SSL_CERT_FILE=/run/host-ca.pem --env REQUESTS_CA_BUNDLE=/run/host-ca.pem)
     SNAME="ros-course-suite-$RELEASE-$$"
     CONTAINERS+=("$SNAME")
     log "make test in a container of $IMAGE (log: $OUT/suite.log)"
     t0=$(now)
-    # the suite tests the lab graders' bubblewrap sandbox, which (as root) makes mount, PID and
-    # network namespaces and tmpfs mounts as on a host: SYS_ADMIN/NET_ADMIN, no seccomp filter
-    # (--privileged is refused on machines that do not grant every capability)
     # a named volume keeps the container's ccache between runs of this script (as a CI machine
-    # keeps its own): the suite's catkin-tools build compiles every C++ package, ~35 min with
-    # a cold cache beside the other tests
-    docker run --rm --name "$SNAME" --cap-add SYS_ADMIN --cap-add NET_ADMIN \
-        --volume "ros-course-ccache-$RELEASE:/root/.cache/ccache" \
-        --security-opt seccomp=unconfined --security-opt apparmor=unconfined \
-        --shm-size=1g "${ca_args[@]}" "$IMAGE" \
+    # keeps its own; make test-cold measures the run without it)
+    docker run --rm --name "$SNAME" "${suite_args[@]}" \
+        --volume "ros-course-ccache-$RELEASE:/root/.cache/ccache" "$IMAGE" \
         bash -c 'cd /course && make test' </dev/null >"$OUT/suite.log" 2>&1
     SUITE_RC=$?
     SUITE_S=$(( $(now) - t0 ))
-    SUITE_LINE=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$OUT/suite.log" | tail -n 1)
+    SUITE_LINE=$(suite_line "$OUT/suite.log")
     [ -n "$SUITE_LINE" ] || { SUITE_LINE="0 passed, 1 failed"; tail -n 30 "$OUT/suite.log"; }
     grep -E '^(FAILED|ERROR)|^\[run_tests\].*(FAIL|fail)' "$OUT/suite.log" | head -n 40
 fi
