@@ -1,5 +1,9 @@
 """joint_state_publisher_gui starts under Xvfb and publishes the model's movable joints."""
+import os
 import subprocess
+
+if not os.environ.get('DISPLAY'):       # the in-process test's Qt: offscreen when headless
+    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
 
 from course_testing import Proc, wait_for
 
@@ -26,14 +30,15 @@ def test_gui_publishes_joint_states(roscore, xvfb, tmp_path):
         assert 'TypeError' not in out and 'Traceback' not in out, out[-2000:]
 
 
-def test_patch_rounds_floats():
-    from python_qt_binding.QtWidgets import QApplication, QSlider
+def test_patch_rounds_floats(qapp):
+    """In-process Qt on pytest-qt's application, which lives as long as the test process: a
+    QApplication made here and dropped at the end would leave this slider, and every later
+    in-process Qt test of the same pytest worker, without their application."""
+    from python_qt_binding.QtWidgets import QSlider
     from jsp_gui_compat import patch_qt
-    app = QApplication.instance() or QApplication(['test', '-platform', 'offscreen'])
     patch_qt()
     patch_qt()   # idempotent
     s = QSlider()
     s.setRange(0, 10000.0)
     s.setValue(10000 / 2)
     assert s.value() == 5000 and s.maximum() == 10000
-    del app

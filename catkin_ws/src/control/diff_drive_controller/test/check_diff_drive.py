@@ -12,6 +12,7 @@ import unittest
 
 import rospy
 import rostest
+from course_runtime.geometry import yaw_of
 from course_testing.rosout import RosoutProbe, rosout_connected
 from control_msgs.msg import JointTrajectoryControllerState
 from controller_manager_msgs.srv import ListControllers, LoadController, SwitchController
@@ -30,10 +31,6 @@ WHEEL_RADIUS = 0.11           # test/diffbot.urdf
 WHEEL_SEPARATION = 1.0
 CM = '/controller_manager/'
 MODE = 'basic'
-
-
-def yaw_of(q):
-    return math.atan2(2.0 * (q.w * q.z + q.x * q.y), 1.0 - 2.0 * (q.y * q.y + q.z * q.z))
 
 
 class DiffDriveTest(unittest.TestCase):

@@ -1,15 +1,21 @@
 """PlotWidget without a master: curves fed through ROSData buffers, offscreen Qt."""
 import math
+import os
 
-import pytest
-from PyQt5 import QtWidgets
+if not os.environ.get('DISPLAY'):
+    os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')
 
-from rqt_plot.plot_widget import PlotWidget
+import pytest                                   # noqa: E402
+
+from rqt_plot.plot_widget import PlotWidget     # noqa: E402
 
 
-@pytest.fixture(scope='module')
-def app():
-    return QtWidgets.QApplication.instance() or QtWidgets.QApplication(['test', '-platform', 'offscreen'])
+@pytest.fixture
+def app(qapp):
+    """pytest-qt's application, which lives as long as the test process. One made by this
+    module would be destroyed at its end while pyqtgraph still holds widgets of it, and the
+    next in-process Qt test of the same pytest worker would make a second one."""
+    return qapp
 
 
 def feed(widget, spec, ts, fn):
