@@ -141,3 +141,34 @@ def test_saver_arguments():
     with pytest.raises(SaverError) as e:
         parse_saver_args(['--bogus'])
     assert str(e.value) == MAP_SAVER_USAGE
+
+
+@pytest.mark.parametrize('name, mode, negate', [('trinary', 'trinary', False), ('scale', 'scale', False),
+                                                ('raw', 'raw', False), ('negate', 'trinary', True)])
+def test_the_ramp_reads_as_the_cpp_loader_reads_it(name, mode, negate):
+    """test/spectrum.png (RGBA: opaque, half and fully transparent greys, a coloured row) gives
+    spectrum_<mode>.txt, which gtest_image_loader.cpp asks of map_server::loadMapFromFile too."""
+    from map_server.map_io import _read_pixels
+    here = os.path.dirname(os.path.abspath(__file__))
+    pixels, has_alpha = _read_pixels(os.path.join(here, 'spectrum.png'))
+    expected = np.loadtxt(os.path.join(here, 'spectrum_%s.txt' % name), dtype=int)
+    assert pixels_to_cells(pixels, has_alpha, negate, 0.65, 0.196, mode).tolist() == expected.tolist()
+
+
+def test_an_image_without_alpha_is_opaque_in_scale_mode():
+    px = np.array([[[200, 100, 0]]], dtype=np.uint8)      # mean 100: between the thresholds
+    p = (255 - 100) / 255.0
+    assert pixels_to_cells(px, False, False, 0.65, 0.196, 'scale').tolist() == [
+        [int(1 + 98 * (p - 0.196) / (0.65 - 0.196))]]
+
+
+def test_grey_with_alpha_is_read_as_sdl_image_reads_it(tmp_path):
+    """A grey + alpha PNG: grey, grey, grey, alpha (the original's SDL_image), so the trinary
+    mean counts the grey three times."""
+    from PIL import Image
+    from map_server.map_io import _read_pixels
+    la = np.zeros((1, 1, 2), dtype=np.uint8)
+    la[0, 0] = (40, 200)
+    Image.fromarray(la, 'LA').save(str(tmp_path / 'la.png'))
+    pixels, has_alpha = _read_pixels(str(tmp_path / 'la.png'))
+    assert has_alpha and pixels.tolist() == [[[40, 40, 40, 200]]]

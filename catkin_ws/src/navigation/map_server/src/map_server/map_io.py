@@ -120,7 +120,9 @@ def _read_pixels(image_path):
                     img = Image.fromarray(np.clip(arr * 255.0 / peak, 0, 255).astype(np.uint8), 'L')
                 else:
                     img = img.convert('L')
-            elif mode not in ('L', 'LA', 'RGB', 'RGBA'):
+            elif mode == 'LA':          # as SDL_image reads it (the original): grey, grey, grey, alpha
+                img = img.convert('RGBA')
+            elif mode not in ('L', 'RGB', 'RGBA'):
                 img = img.convert('RGBA' if 'A' in mode else 'RGB')
             pixels = np.asarray(img, dtype=np.uint8)
             has_alpha = img.mode in ('LA', 'RGBA')
@@ -141,7 +143,8 @@ def pixels_to_cells(pixels, has_alpha, negate, occ_th, free_th, mode):
     n = pixels.shape[2]
     avg_channels = n if (mode == TRINARY or not has_alpha) else n - 1
     color_avg = pixels[:, :, :avg_channels].astype(np.int32).sum(axis=2) / float(avg_channels)
-    alpha = np.ones(color_avg.shape) if n == 1 else pixels[:, :, n - 1].astype(np.float64)
+    # transparent (alpha 0) = unknown in scale mode; an image without alpha is opaque
+    alpha = pixels[:, :, n - 1].astype(np.float64) if has_alpha else np.ones(color_avg.shape)
     if negate:
         color_avg = 255.0 - color_avg
     if mode == RAW:
