@@ -1,8 +1,9 @@
 """The compiled ray caster (RayCaster(core='compiled'): engine/raycore.py + core/raycast.cpp)
 against the NumPy one it replaces (core='python', the reference): the same distances (to
-1e-9 m), the same shape hit, the same inf where nothing is hit, on the office world with the
-space scanner (its lidar, its own shapes excluded or not), on a scene with every primitive and
-meshes (static and moving) at many poses, and on rays grazing edges, corners and faces."""
+1e-9 m), the same shape hit (or, where faces coincide, one at that distance), the same inf
+where nothing is hit, on the office world with the space scanner (its lidar, its own shapes
+excluded or not), on a scene with every primitive and meshes (static and moving) at many poses,
+and on rays grazing edges, corners and faces."""
 import math
 import os
 import shutil
@@ -31,8 +32,17 @@ def both(shapes):
     return RayCaster(shapes, core='python'), RayCaster(shapes, core='compiled')
 
 
+def excluded_by(exclude, shape):
+    if exclude is None:
+        return False
+    return exclude(shape) if callable(exclude) else (shape.model, shape.link) in exclude
+
+
 def agree(casters, origins, dirs, max_range, exclude=None, min_range=0.0):
-    """Cast with both cores; assert they agree; return (t, shape index) of the compiled one."""
+    """Cast with both cores; assert they agree; return (t, shape index) of the compiled one.
+    Where two shapes' faces coincide (a sofa's seat and arm boxes of one link), the cores may
+    name different ones, differing in the last bit: the compiled core's shape must then lie at
+    the reference's distance, by the reference's own cast at that shape alone."""
     ref, comp = casters
     t0, k0 = ref.cast_hits(origins, dirs, max_range, exclude, min_range)
     t1, k1 = comp.cast_hits(origins, dirs, max_range, exclude, min_range)
@@ -41,8 +51,14 @@ def agree(casters, origins, dirs, max_range, exclude=None, min_range=0.0):
     assert not np.isnan(t0).any() and not np.isnan(t1).any()
     fin = np.isfinite(t0)
     np.testing.assert_allclose(t1[fin], t0[fin], atol=TOL, rtol=0)
-    np.testing.assert_array_equal(k1, k0)
     np.testing.assert_array_equal(k1 >= 0, fin)
+    o = np.asarray(origins, dtype=float)
+    for r in np.nonzero(k1 != k0)[0]:
+        shape = ref.shapes[k1[r]]
+        assert not excluded_by(exclude, shape), (r, shape.key)
+        alone, hit = ref.cast_hits(o if o.ndim == 1 else o[r:r + 1], dirs[r:r + 1], max_range,
+                                   lambda s, keep=shape: s is not keep, min_range)
+        assert hit[0] == k1[r] and abs(alone[0] - t0[r]) <= TOL, (r, shape.key, alone[0], t0[r])
     return t1, k1
 
 
@@ -71,6 +87,9 @@ def office():
     out = subprocess.run([exe, os.path.join(SRC, rel)], capture_output=True, text=True,
                          timeout=60)
     assert out.returncode == 0, out.stderr
+    # quickStep's constraint order comes from ODE's process-wide random generator: seeded, the
+    # furniture settles the same way whatever ran before in this process (a pytest worker)
+    _core.set_random_seed(1)
     pw = PhysicsWorld(world.physics, world.gravity)
     for m in world.models:
         pw.add_model(m)
